@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/// The `armour` program: one entry point, one subcommand per job.
+
+#include "app/CommandContext.hpp"
+#include "app/ShapeCommands.hpp"
+#include "core/BuildInfo.hpp"
+#include "core/Error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"armour: breakwater armour-layer stability toolchain (wave tank -> storm file -> rigid FDEM)"};
+  app.require_subcommand(1);
+  armour::app::GlobalOptions global;
+  app.add_option("--log-level", global.logLevel, "log level: trace, debug, info, warn, error, off")
+      ->capture_default_str();
+  app.add_option("--log-file", global.logFile, "also write the run log to this file");
+  app.set_version_flag("--version", armour::core::buildInfo());
+
+  app.add_subcommand("version", "print the version and build information (git hash, compiler, OpenMP threads)")
+      ->callback([] { std::cout << armour::core::buildInfo() << "\n"; });
+  armour::app::addShapeCommands(app, global);
+
+  std::string commandLine;
+  for (int i = 0; i < argc; ++i) {
+    commandLine += (i ? " " : "") + std::string(argv[i]);
+  }
+  app.parse_complete_callback([&] { armour::app::startRun(global, commandLine); });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const armour::core::InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "internal error: " << e.what() << "\n(please report this with the command line)\n";
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "core/Log.hpp"
+
+#include "core/Error.hpp"
+
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+#include <mutex>
+#include <vector>
+
+namespace armour::core {
+namespace {
+
+struct LogRegistry {
+  std::mutex mutex;
+  std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
+  spdlog::level::level_enum level = spdlog::level::info;
+};
+
+LogRegistry& registry() {
+  static LogRegistry r;
+  return r;
+}
+
+} // namespace
+
+std::shared_ptr<spdlog::logger> logger(const std::string& module) {
+  auto& r = registry();
+  std::lock_guard lock(r.mutex);
+  if (auto existing = spdlog::get(module)) {
+    return existing;
+  }
+  auto created = std::make_shared<spdlog::logger>(module, r.sinks.begin(), r.sinks.end());
+  created->set_level(r.level);
+  created->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%n] [%l] %v");
+  spdlog::register_logger(created);
+  return created;
+}
+
+void addLogFile(const std::string& path) {
+  auto& r = registry();
+  std::lock_guard lock(r.mutex);
+  spdlog::sink_ptr sink;
+  try {
+    sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, true);
+  } catch (const spdlog::spdlog_ex& e) {
+    failInput(path, "cannot open the run log for writing ({}); choose a writable output folder", e.what());
+  }
+  r.sinks.push_back(sink);
+  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) { l->sinks().push_back(sink); });
+}
+
+void setLogLevel(const std::string& level) {
+  auto& r = registry();
+  const auto parsed = spdlog::level::from_str(level);
+  if (parsed == spdlog::level::off && level != "off") {
+    failInput("--log-level", "'{}' is not a log level; use trace, debug, info, warn, error or off", level);
+  }
+  std::lock_guard lock(r.mutex);
+  r.level = parsed;
+  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) { l->set_level(parsed); });
+}
+
+} // namespace armour::core

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "geometry/VtpFile.hpp"
+
+#include "core/AtomicFile.hpp"
+#include "core/Error.hpp"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <string>
+
+namespace armour::geometry {
+namespace {
+
+/// Collect VTK's error messages instead of letting VTK print them.
+struct VtkErrors {
+  std::string text;
+  static void onError(vtkObject*, unsigned long, void* clientData, void* callData) {
+    auto* self = static_cast<VtkErrors*>(clientData);
+    if (callData != nullptr) {
+      self->text += static_cast<const char*>(callData);
+    }
+  }
+};
+
+} // namespace
+
+TriangleMesh readVtp(const std::filesystem::path& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    core::failInput(path.string(), "cannot open the mesh file; check the path");
+  }
+  VtkErrors errors;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetCallback(&VtkErrors::onError);
+  callback->SetClientData(&errors);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->AddObserver(vtkCommand::ErrorEvent, callback);
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* data = reader->GetOutput();
+  if (!errors.text.empty() || data == nullptr) {
+    core::failInput(path.string(), "not a readable VTK XML PolyData file: {}", errors.text);
+  }
+  TriangleMesh mesh;
+  const vtkIdType np = data->GetNumberOfPoints();
+  mesh.vertices.reserve(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i) {
+    double p[3];
+    data->GetPoint(i, p);
+    mesh.vertices.emplace_back(p[0], p[1], p[2]);
+  }
+  const auto addPolygon = [&](vtkIdType n, const vtkIdType* ids) {
+    for (vtkIdType k = 1; k + 1 < n; ++k) {
+      mesh.triangles.push_back({static_cast<std::int32_t>(ids[0]), static_cast<std::int32_t>(ids[k]),
+                                static_cast<std::int32_t>(ids[k + 1])});
+    }
+  };
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  vtkCellArray* polys = data->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);) {
+    addPolygon(n, ids);
+  }
+  vtkCellArray* strips = data->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);) {
+    // A strip (p0, p1, p2, p3, ...) holds triangles (p_k, p_k+1, p_k+2), alternate ones reversed.
+    for (vtkIdType k = 0; k + 2 < n; ++k) {
+      const auto a = static_cast<std::int32_t>(ids[k]);
+      const auto b = static_cast<std::int32_t>(ids[k + 1]);
+      const auto c = static_cast<std::int32_t>(ids[k + 2]);
+      mesh.triangles.push_back(k % 2 == 0 ? Triangle{a, b, c} : Triangle{b, a, c});
+    }
+  }
+  if (mesh.triangles.empty()) {
+    core::failInput(path.string(), "the .vtp holds no polygons; export the surface (Extract Surface in ParaView)");
+  }
+  return mesh;
+}
+
+void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const auto& v = mesh.vertices[i];
+    points->SetPoint(static_cast<vtkIdType>(i), v.x(), v.y(), v.z());
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& f : mesh.triangles) {
+    const vtkIdType ids[3] = {f[0], f[1], f[2]};
+    polys->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(points);
+  data->SetPolys(polys);
+
+  const auto tmp = core::temporarySibling(path);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputData(data);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    core::failInput(path.string(), "VTK could not write the file; check that the folder exists and is writable");
+  }
+  core::commitAtomicFile(tmp, path);
+}
+
+} // namespace armour::geometry

@@ -1,0 +1,13 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// PLACEHOLDER: replaced by the generator's real implementation.
+#include "geometry/shapes/Generators.hpp"
+#include <stdexcept>
+namespace armour::geometry::shapes {
+ShapeGenerator accropodeGenerator() {
+  ShapeGenerator g;
+  g.name = "accropode";
+  g.summary = "placeholder";
+  g.build = [](const ShapeParameterValues&) -> TriangleMesh { throw std::logic_error("placeholder"); };
+  return g;
+}
+} // namespace armour::geometry::shapes
