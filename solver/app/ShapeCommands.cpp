@@ -7,10 +7,14 @@
 #include "geometry/MeshFile.hpp"
 #include "geometry/MeshValidation.hpp"
 #include "geometry/ShapeLibrary.hpp"
+#include "geometry/SurfaceRefinement.hpp"
+#include "geometry/Tetrahedralizer.hpp"
+#include "geometry/VtuFile.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -85,7 +89,9 @@ void exportShape(const ExportOptions& o) {
   request.seed = o.seed;
   const MeshFormat format = o.format.empty() ? meshFormatFromPath(o.output) : meshFormatFromName(o.format);
   TriangleMesh mesh = makeShape(o.shape, request);
-  // REFINE-HOOK
+  if (o.maxEdge > 0.0) {
+    mesh = refineSurface(mesh, o.maxEdge);
+  }
   writeMesh(mesh, o.output, format);
   const MassProperties mp = computeMassProperties(mesh);
   core::logger("armour")->info("wrote {} ({} triangles, V = {:.6g} m^3, Dn = {:.6g} m)", o.output, mesh.triangleCount(),
@@ -144,6 +150,61 @@ void printInfo(const std::string& path, double density) {
   }
 }
 
+struct MeshToolOptions {
+  std::string input;
+  std::string output;
+  std::string format;     ///< "" = from the extension
+  double maxEdge = 0.0;   ///< m
+  std::size_t tets = 0;   ///< target tetrahedron count
+  bool uniform = false;   ///< refine the surface to the interior size first
+};
+
+/// Read a mesh file and validate it (orientation repaired where unambiguous, logged).
+TriangleMesh readValidMesh(const std::string& path) {
+  TriangleMesh mesh = readMesh(path);
+  const RepairReport repair = validateMesh(mesh, path);
+  if (repair.flippedFaces > 0 || repair.inverted) {
+    core::logger("geometry")->warn("{}: orientation repaired ({} faces flipped{})", path, repair.flippedFaces,
+                                   repair.inverted ? ", mesh turned outward" : "");
+  }
+  return mesh;
+}
+
+void refineFile(const MeshToolOptions& o) {
+  if (!(o.maxEdge > 0.0)) {
+    core::failInput("--max-edge", "{} m: give the largest edge length wanted, a positive size in metres", o.maxEdge);
+  }
+  const TriangleMesh mesh = refineSurface(readValidMesh(o.input), o.maxEdge);
+  writeMesh(mesh, o.output, o.format.empty() ? meshFormatFromPath(o.output) : meshFormatFromName(o.format));
+  const SurfaceMeshStats stats = surfaceMeshStats(mesh);
+  std::cout << fmt::format("{}: {} triangles, edges {:.4g} to {:.4g} m (mean {:.4g} m), smallest angle {:.3g} deg\n",
+                           o.output, stats.triangles, stats.minEdge, stats.maxEdge, stats.meanEdge, stats.minAngleDeg);
+}
+
+void tetrahedralizeFile(const MeshToolOptions& o) {
+  if ((o.tets > 0) == (o.maxEdge > 0.0)) {
+    core::failInput("shape tetra", "give exactly one of --tets (target count) or --max-edge (m); got tets = {}, "
+                                   "max-edge = {}",
+                    o.tets, o.maxEdge);
+  }
+  TetrahedralizeOptions options;
+  options.targetTetCount = o.tets;
+  options.maxEdge = o.maxEdge;
+  options.keepSurface = !o.uniform;
+  options.source = o.input;
+  const TetMesh mesh = tetrahedralize(readValidMesh(o.input), options);
+  std::filesystem::path out(o.output);
+  if (out.extension() != ".vtu") {
+    core::failInput(o.output, "tetrahedral meshes are written as VTK unstructured grids: use the extension .vtu");
+  }
+  writeVtu(mesh, out);
+  const TetMeshQuality q = tetMeshQuality(mesh);
+  std::cout << fmt::format("{}: {} tetrahedra, {} vertices, volume {:.9g} m^3\n", o.output, q.tets,
+                           mesh.vertices.size(), mesh.totalVolume());
+  std::cout << fmt::format("quality: dihedral angles {:.3g} to {:.4g} deg, radius ratio min {:.3g} mean {:.3g}\n",
+                           q.minDihedralDeg, q.maxDihedralDeg, q.minRadiusRatio, q.meanRadiusRatio);
+}
+
 } // namespace
 
 void addShapeCommands(CLI::App& app, const GlobalOptions& /*global*/) {
@@ -172,6 +233,23 @@ void addShapeCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   infoCmd->add_option("file", info->first, "mesh file (.stl, .obj, .vtp)")->required();
   infoCmd->add_option("--density", info->second, "density for mass and inertia (kg/m^3)")->capture_default_str();
   infoCmd->callback([info] { printInfo(info->first, info->second); });
+
+  auto rf = std::make_shared<MeshToolOptions>();
+  auto* refine = shape->add_subcommand("refine", "split surface edges until none is longer than --max-edge");
+  refine->add_option("file", rf->input, "closed mesh (.stl, .obj, .vtp)")->required();
+  refine->add_option("--max-edge", rf->maxEdge, "largest edge length (m)")->required();
+  refine->add_option("-o,--output", rf->output, "output mesh file")->required();
+  refine->add_option("--format", rf->format, "stl, stl-ascii, obj or vtp (default: from the extension)");
+  refine->callback([rf] { refineFile(*rf); });
+
+  auto tt = std::make_shared<MeshToolOptions>();
+  auto* tetra = shape->add_subcommand("tetra", "tetrahedralise a closed mesh (gmsh) and write a .vtu");
+  tetra->add_option("file", tt->input, "closed mesh (.stl, .obj, .vtp)")->required();
+  tetra->add_option("--tets", tt->tets, "target number of tetrahedra");
+  tetra->add_option("--max-edge", tt->maxEdge, "largest interior edge (m)");
+  tetra->add_flag("--uniform", tt->uniform, "refine the surface to the interior size first (about uniform elements)");
+  tetra->add_option("-o,--output", tt->output, "output .vtu file")->required();
+  tetra->callback([tt] { tetrahedralizeFile(*tt); });
 }
 
 } // namespace armour::app

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "core/BuildInfo.hpp"
 
+#include "GitHash.hpp" // generated at build time: ARMOUR_GIT_HASH
+
 #include <fmt/format.h>
 #include <omp.h>
 

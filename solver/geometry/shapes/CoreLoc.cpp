@@ -1,13 +1,154 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// PLACEHOLDER: replaced by the generator's real implementation.
+/// @file CoreLoc.cpp
+/// A Core-Loc-like unit (Melby and Turk 1994, USACE; Core-Loc International): a central member
+/// joining two parallel outer members, all octagonal in section, with chamfered joins.
+///
+/// Natural frame (overall height C = 1): the outer members stand along z at x = -/+ (C - w)/2, the
+/// central member lies along x between them, so the unit fills a C x w x C box (w: member width
+/// across flats). As in the patent (US 5,441,362, claims 1-6) the members are equally long (C over
+/// their outer faces) and the outer members are two octagonal frustums joined by an intermediate
+/// prism; the joins carry 45-degree chamfers in the plane of the unit (above and below the
+/// central member). Every face is planar.
+
+#include "geometry/GmshSession.hpp"
 #include "geometry/shapes/Generators.hpp"
-#include <stdexcept>
+
+#include <gmsh.h>
+
+#include <cmath>
+#include <vector>
+
 namespace armour::geometry::shapes {
+namespace {
+
+/// Member width across flats relative to C (unit: -). Calibrated (bisection on the exact CAD volume)
+/// so that this construction gives V = 0.22 C^3, the Core-Loc volume relation of the USACE/CLI
+/// guidance (C = unit height); test_shapes_slender checks it.
+constexpr double kMemberWidth = 0.3561;
+/// Outer-member end width relative to its middle width (unit: -): the tapering "frustum" ends.
+constexpr double kEndRatio = 0.65;
+/// Chamfer leg at each join relative to the member width (unit: -).
+constexpr double kChamferRatio = 0.25;
+/// Central-member width at the outer members' axes relative to its middle width (unit: -).
+constexpr double kCentralEndRatio = 0.85;
+
+/// Corners of an octagon in the plane through `centre` spanned by the unit vectors e1, e2: a regular
+/// octagon `width` across flats (m), flats normal to e1 and e2, then pulled apart by `stretch` (m)
+/// on each side along e2 (the two flats normal to e2 move out, the corner cuts keep 45 degrees).
+/// Counter-clockwise about e1 x e2.
+std::vector<Vec3> octagon(const Vec3& centre, const Vec3& e1, const Vec3& e2, double width, double stretch = 0.0) {
+  const double h = 0.5 * width;
+  const double q = h * (std::sqrt(2.0) - 1.0);
+  const double s = stretch;
+  const double a[8][2] = {{h, -q - s}, {h, q + s},   {q, h + s},   {-q, h + s},
+                          {-h, q + s}, {-h, -q - s}, {-q, -h - s}, {q, -h - s}};
+  std::vector<Vec3> corners;
+  for (const auto& p : a) {
+    corners.push_back(centre + p[0] * e1 + p[1] * e2);
+  }
+  return corners;
+}
+
+/// OCC solid lofted through polygons whose corners correspond in order: two end caps and one
+/// quadrilateral per edge between consecutive sections. Callers pass parallel polygons whose
+/// corresponding edges are parallel, so every quadrilateral is planar; building the faces as OCC
+/// planes (not ruled B-spline patches, as addThruSections would) keeps the boolean fusion fast and
+/// exact.
+GmshEntity addLoft(const std::vector<std::vector<Vec3>>& sections) {
+  namespace occ = gmsh::model::occ;
+  const std::size_t n = sections.front().size();
+  std::vector<std::vector<int>> points;
+  for (const auto& polygon : sections) {
+    std::vector<int> tags;
+    for (const Vec3& p : polygon) {
+      tags.push_back(occ::addPoint(p.x(), p.y(), p.z()));
+    }
+    points.push_back(tags);
+  }
+  std::vector<std::vector<int>> rings;  // edges of each section polygon
+  std::vector<std::vector<int>> rails;  // edges from one section to the next
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    std::vector<int> ring;
+    for (std::size_t i = 0; i < n; ++i) {
+      ring.push_back(occ::addLine(points[s][i], points[s][(i + 1) % n]));
+    }
+    rings.push_back(ring);
+    if (s + 1 < points.size()) {
+      std::vector<int> rail;
+      for (std::size_t i = 0; i < n; ++i) {
+        rail.push_back(occ::addLine(points[s][i], points[s + 1][i]));
+      }
+      rails.push_back(rail);
+    }
+  }
+  std::vector<int> faces = {occ::addPlaneSurface({occ::addCurveLoop(rings.front())}),
+                            occ::addPlaneSurface({occ::addCurveLoop(rings.back())})};
+  for (std::size_t s = 0; s + 1 < points.size(); ++s) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const int loop = occ::addCurveLoop({rings[s][i], rails[s][(i + 1) % n], rings[s + 1][i], rails[s][i]});
+      faces.push_back(occ::addPlaneSurface({loop}));
+    }
+  }
+  return {3, occ::addVolume({occ::addSurfaceLoop(faces)})};
+}
+
+/// The unit at C = 1 with member width w (fraction of C).
+TriangleMesh buildCoreLoc(double w, double* cadVolume = nullptr) {
+  GmshSession session("coreloc");
+  const Vec3 ex = Vec3::UnitX();
+  const Vec3 ey = Vec3::UnitY();
+  const Vec3 ez = Vec3::UnitZ();
+  const double c = kChamferRatio * w;
+  const double xOuter = 0.5 * (1.0 - w); // outer-member axes: their outer faces are the unit's sides
+  const double xInner = xOuter - 0.5 * w; // inner faces of the outer members
+  // The intermediate (full-width) part of each outer member spans the chamfers, so the chamfer
+  // material meets a flat face rather than a tapering one.
+  const double zFull = 0.5 * w + c;
+  // The central member is two frustums too (patent claim 3): full width at its middle, tapering
+  // towards the outer members' axes. Being narrower than the outer members where it meets them
+  // also keeps its faces off theirs (coplanar faces make the OCC fusion slow and fragile).
+  const auto centralWidth = [&](double x) { return w * (1.0 - (1.0 - kCentralEndRatio) * std::abs(x) / xOuter); };
+
+  std::vector<GmshEntity> outer;
+  for (double side : {-1.0, 1.0}) {
+    const Vec3 axis = side * xOuter * ex;
+    outer.push_back(addLoft({octagon(axis - 0.5 * ez, ex, ey, kEndRatio * w), octagon(axis - zFull * ez, ex, ey, w),
+                             octagon(axis + zFull * ez, ex, ey, w), octagon(axis + 0.5 * ez, ex, ey, kEndRatio * w)}));
+  }
+  // Central member with its chamfers in one loft: over the last c before each join its top and
+  // bottom flats rise (fall) by c, at exactly 45 degrees (the stretch makes up for the taper), then
+  // run on into the outer member's axis plane, inside the outer member's full-width part.
+  const double stretch = c + 0.5 * (centralWidth(xInner - c) - centralWidth(xInner));
+  std::vector<std::vector<Vec3>> sections;
+  for (double x : {-xOuter, -xInner, -(xInner - c), 0.0, xInner - c, xInner, xOuter}) {
+    sections.push_back(octagon(x * ex, ey, ez, centralWidth(x), std::abs(x) >= xInner ? stretch : 0.0));
+  }
+  const GmshEntity central = addLoft(sections);
+  const auto solid = session.fuse({central}, outer);
+  if (cadVolume != nullptr) {
+    *cadVolume = session.occVolume(solid);
+  }
+  return session.meshSurface(1.0, 0); // planar faces only
+}
+
+} // namespace
+
 ShapeGenerator coreLocGenerator() {
   ShapeGenerator g;
   g.name = "coreloc";
-  g.summary = "placeholder";
-  g.build = [](const ShapeParameterValues&) -> TriangleMesh { throw std::logic_error("placeholder"); };
+  g.summary = "Core-Loc-like: central octagonal member joining two parallel outer members, chamfered joins";
+  g.proportions =
+      "overall height C = length of every member over its outer faces; members regular octagons w = 0.3561 C "
+      "across flats; outer members full width over their middle 1.5 w = 0.534 C, tapering linearly to 0.65 w "
+      "at their flat ends; central member tapering from w at its middle to 0.85 w at the outer members' axes; "
+      "45-degree chamfers with 0.25 w = 0.089 C legs above and below both joins; the unit fills C x 0.3561 C x C; "
+      "V = 0.2200 C^3";
+  g.source = "Melby and Turk (1994), US patent 5,441,362 (central member, two parallel outer members, octagonal "
+             "sections tapering to the ends, chamfered joins, equal member lengths); V = 0.22 C^3 from the "
+             "USACE/CLI guidance. Member width calibrated to that volume; taper and chamfer sizes are an "
+             "approximation of published drawings, not the proprietary geometry";
+  g.build = [](const ShapeParameterValues&) { return buildCoreLoc(kMemberWidth); };
   return g;
 }
+
 } // namespace armour::geometry::shapes
