@@ -1,13 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "geometry/VtpFile.hpp"
 
-#include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
+#include "geometry/VtkSupport.hpp"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
-#include <vtkCommand.h>
-#include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -17,36 +14,18 @@
 #include <string>
 
 namespace armour::geometry {
-namespace {
-
-/// Collect VTK's error messages instead of letting VTK print them.
-struct VtkErrors {
-  std::string text;
-  static void onError(vtkObject*, unsigned long, void* clientData, void* callData) {
-    auto* self = static_cast<VtkErrors*>(clientData);
-    if (callData != nullptr) {
-      self->text += static_cast<const char*>(callData);
-    }
-  }
-};
-
-} // namespace
-
 TriangleMesh readVtp(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     core::failInput(path.string(), "cannot open the mesh file; check the path");
   }
-  VtkErrors errors;
-  vtkNew<vtkCallbackCommand> callback;
-  callback->SetCallback(&VtkErrors::onError);
-  callback->SetClientData(&errors);
+  VtkMessageCapture messages;
   vtkNew<vtkXMLPolyDataReader> reader;
-  reader->AddObserver(vtkCommand::ErrorEvent, callback);
   reader->SetFileName(path.c_str());
   reader->Update();
   vtkPolyData* data = reader->GetOutput();
-  if (!errors.text.empty() || data == nullptr) {
-    core::failInput(path.string(), "not a readable VTK XML PolyData file: {}", errors.text);
+  if (!messages.text().empty() || data == nullptr) {
+    core::failInput(path.string(), "not a readable VTK XML PolyData file; re-export it from ParaView. VTK said: {}",
+                    messages.text());
   }
   TriangleMesh mesh;
   const vtkIdType np = data->GetNumberOfPoints();
@@ -85,34 +64,16 @@ TriangleMesh readVtp(const std::filesystem::path& path) {
 }
 
 void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertices.size()));
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-    const auto& v = mesh.vertices[i];
-    points->SetPoint(static_cast<vtkIdType>(i), v.x(), v.y(), v.z());
-  }
   vtkNew<vtkCellArray> polys;
   for (const auto& f : mesh.triangles) {
     const vtkIdType ids[3] = {f[0], f[1], f[2]};
     polys->InsertNextCell(3, ids);
   }
   vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
+  data->SetPoints(toVtkPoints(mesh.vertices));
   data->SetPolys(polys);
-
-  const auto tmp = core::temporarySibling(path);
   vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetFileName(tmp.c_str());
-  writer->SetInputData(data);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    core::failInput(path.string(), "VTK could not write the file; check that the folder exists and is writable");
-  }
-  core::commitAtomicFile(tmp, path);
+  writeVtkXmlAtomically(*writer, data, path);
 }
 
 } // namespace armour::geometry

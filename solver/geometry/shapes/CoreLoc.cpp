@@ -12,6 +12,7 @@
 
 #include "geometry/GmshSession.hpp"
 #include "geometry/shapes/Generators.hpp"
+#include "geometry/shapes/PlanarLoft.hpp"
 
 #include <gmsh.h>
 
@@ -31,66 +32,6 @@ constexpr double kEndRatio = 0.65;
 constexpr double kChamferRatio = 0.25;
 /// Central-member width at the outer members' axes relative to its middle width (unit: -).
 constexpr double kCentralEndRatio = 0.85;
-
-/// Corners of an octagon in the plane through `centre` spanned by the unit vectors e1, e2: a regular
-/// octagon `width` across flats (m), flats normal to e1 and e2, then pulled apart by `stretch` (m)
-/// on each side along e2 (the two flats normal to e2 move out, the corner cuts keep 45 degrees).
-/// Counter-clockwise about e1 x e2.
-std::vector<Vec3> octagon(const Vec3& centre, const Vec3& e1, const Vec3& e2, double width, double stretch = 0.0) {
-  const double h = 0.5 * width;
-  const double q = h * (std::sqrt(2.0) - 1.0);
-  const double s = stretch;
-  const double a[8][2] = {{h, -q - s}, {h, q + s},   {q, h + s},   {-q, h + s},
-                          {-h, q + s}, {-h, -q - s}, {-q, -h - s}, {q, -h - s}};
-  std::vector<Vec3> corners;
-  for (const auto& p : a) {
-    corners.push_back(centre + p[0] * e1 + p[1] * e2);
-  }
-  return corners;
-}
-
-/// OCC solid lofted through polygons whose corners correspond in order: two end caps and one
-/// quadrilateral per edge between consecutive sections. Callers pass parallel polygons whose
-/// corresponding edges are parallel, so every quadrilateral is planar; building the faces as OCC
-/// planes (not ruled B-spline patches, as addThruSections would) keeps the boolean fusion fast and
-/// exact.
-GmshEntity addLoft(const std::vector<std::vector<Vec3>>& sections) {
-  namespace occ = gmsh::model::occ;
-  const std::size_t n = sections.front().size();
-  std::vector<std::vector<int>> points;
-  for (const auto& polygon : sections) {
-    std::vector<int> tags;
-    for (const Vec3& p : polygon) {
-      tags.push_back(occ::addPoint(p.x(), p.y(), p.z()));
-    }
-    points.push_back(tags);
-  }
-  std::vector<std::vector<int>> rings;  // edges of each section polygon
-  std::vector<std::vector<int>> rails;  // edges from one section to the next
-  for (std::size_t s = 0; s < points.size(); ++s) {
-    std::vector<int> ring;
-    for (std::size_t i = 0; i < n; ++i) {
-      ring.push_back(occ::addLine(points[s][i], points[s][(i + 1) % n]));
-    }
-    rings.push_back(ring);
-    if (s + 1 < points.size()) {
-      std::vector<int> rail;
-      for (std::size_t i = 0; i < n; ++i) {
-        rail.push_back(occ::addLine(points[s][i], points[s + 1][i]));
-      }
-      rails.push_back(rail);
-    }
-  }
-  std::vector<int> faces = {occ::addPlaneSurface({occ::addCurveLoop(rings.front())}),
-                            occ::addPlaneSurface({occ::addCurveLoop(rings.back())})};
-  for (std::size_t s = 0; s + 1 < points.size(); ++s) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const int loop = occ::addCurveLoop({rings[s][i], rails[s][(i + 1) % n], rings[s + 1][i], rails[s][i]});
-      faces.push_back(occ::addPlaneSurface({loop}));
-    }
-  }
-  return {3, occ::addVolume({occ::addSurfaceLoop(faces)})};
-}
 
 /// The unit at C = 1 with member width w (fraction of C).
 TriangleMesh buildCoreLoc(double w, double* cadVolume = nullptr) {
@@ -112,8 +53,8 @@ TriangleMesh buildCoreLoc(double w, double* cadVolume = nullptr) {
   std::vector<GmshEntity> outer;
   for (double side : {-1.0, 1.0}) {
     const Vec3 axis = side * xOuter * ex;
-    outer.push_back(addLoft({octagon(axis - 0.5 * ez, ex, ey, kEndRatio * w), octagon(axis - zFull * ez, ex, ey, w),
-                             octagon(axis + zFull * ez, ex, ey, w), octagon(axis + 0.5 * ez, ex, ey, kEndRatio * w)}));
+    outer.push_back(addPlanarLoft({octagonSection(axis - 0.5 * ez, ex, ey, kEndRatio * w), octagonSection(axis - zFull * ez, ex, ey, w),
+                             octagonSection(axis + zFull * ez, ex, ey, w), octagonSection(axis + 0.5 * ez, ex, ey, kEndRatio * w)}));
   }
   // Central member with its chamfers in one loft: over the last c before each join its top and
   // bottom flats rise (fall) by c, at exactly 45 degrees (the stretch makes up for the taper), then
@@ -121,9 +62,9 @@ TriangleMesh buildCoreLoc(double w, double* cadVolume = nullptr) {
   const double stretch = c + 0.5 * (centralWidth(xInner - c) - centralWidth(xInner));
   std::vector<std::vector<Vec3>> sections;
   for (double x : {-xOuter, -xInner, -(xInner - c), 0.0, xInner - c, xInner, xOuter}) {
-    sections.push_back(octagon(x * ex, ey, ez, centralWidth(x), std::abs(x) >= xInner ? stretch : 0.0));
+    sections.push_back(octagonSection(x * ex, ey, ez, centralWidth(x), std::abs(x) >= xInner ? stretch : 0.0));
   }
-  const GmshEntity central = addLoft(sections);
+  const GmshEntity central = addPlanarLoft(sections);
   const auto solid = session.fuse({central}, outer);
   if (cadVolume != nullptr) {
     *cadVolume = session.occVolume(solid);

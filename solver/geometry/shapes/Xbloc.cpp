@@ -8,6 +8,7 @@
 
 #include "geometry/GmshSession.hpp"
 #include "geometry/shapes/Generators.hpp"
+#include "geometry/shapes/PlanarLoft.hpp"
 
 #include <gmsh.h>
 
@@ -24,56 +25,6 @@ constexpr double kLegWidth = 0.3671;
 /// Central cube side relative to D (unit: -).
 constexpr double kBodyWidth = 0.5;
 
-/// Corners of a square `side` wide (m) in the plane through `centre` spanned by the unit vectors
-/// e1, e2 (sides along e1 and e2), counter-clockwise about e1 x e2.
-std::vector<Vec3> square(const Vec3& centre, const Vec3& e1, const Vec3& e2, double side) {
-  const double h = 0.5 * side;
-  return {centre + h * (e1 - e2), centre + h * (e1 + e2), centre + h * (-e1 + e2), centre - h * (e1 + e2)};
-}
-
-/// OCC solid lofted through polygons whose corners correspond in order: two end caps and one
-/// quadrilateral per edge between consecutive sections. Callers pass parallel polygons whose
-/// corresponding edges are parallel, so every quadrilateral is planar; building the faces as OCC
-/// planes (not ruled B-spline patches, as addThruSections would) keeps the boolean fusion fast and
-/// exact.
-GmshEntity addLoft(const std::vector<std::vector<Vec3>>& sections) {
-  namespace occ = gmsh::model::occ;
-  const std::size_t n = sections.front().size();
-  std::vector<std::vector<int>> points;
-  for (const auto& polygon : sections) {
-    std::vector<int> tags;
-    for (const Vec3& p : polygon) {
-      tags.push_back(occ::addPoint(p.x(), p.y(), p.z()));
-    }
-    points.push_back(tags);
-  }
-  std::vector<std::vector<int>> rings;  // edges of each section polygon
-  std::vector<std::vector<int>> rails;  // edges from one section to the next
-  for (std::size_t s = 0; s < points.size(); ++s) {
-    std::vector<int> ring;
-    for (std::size_t i = 0; i < n; ++i) {
-      ring.push_back(occ::addLine(points[s][i], points[s][(i + 1) % n]));
-    }
-    rings.push_back(ring);
-    if (s + 1 < points.size()) {
-      std::vector<int> rail;
-      for (std::size_t i = 0; i < n; ++i) {
-        rail.push_back(occ::addLine(points[s][i], points[s + 1][i]));
-      }
-      rails.push_back(rail);
-    }
-  }
-  std::vector<int> faces = {occ::addPlaneSurface({occ::addCurveLoop(rings.front())}),
-                            occ::addPlaneSurface({occ::addCurveLoop(rings.back())})};
-  for (std::size_t s = 0; s + 1 < points.size(); ++s) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const int loop = occ::addCurveLoop({rings[s][i], rails[s][(i + 1) % n], rings[s + 1][i], rails[s][i]});
-      faces.push_back(occ::addPlaneSurface({loop}));
-    }
-  }
-  return {3, occ::addVolume({occ::addSurfaceLoop(faces)})};
-}
-
 /// The unit at D = 1 with leg side t (fraction of D).
 TriangleMesh buildXbloc(double t, double* cadVolume = nullptr) {
   GmshSession session("xbloc");
@@ -81,7 +32,7 @@ TriangleMesh buildXbloc(double t, double* cadVolume = nullptr) {
   const Vec3 ey = Vec3::UnitY();
   const Vec3 ez = Vec3::UnitZ();
   const double b = kBodyWidth;
-  const GmshEntity body = addLoft({square(-0.5 * b * ez, ex, ey, b), square(0.5 * b * ez, ex, ey, b)});
+  const GmshEntity body = addPlanarLoft({squareSection(-0.5 * b * ez, ex, ey, b), squareSection(0.5 * b * ez, ex, ey, b)});
   std::vector<GmshEntity> limbs;
   // Legs: square prisms from the centre along (-/+1, 0, -/+1)/sqrt(2), end faces square to the leg;
   // the outer corners of an end face reach x = z = -/+ D/2 when the axis is 1/sqrt(2) - t/2 long.
@@ -90,12 +41,12 @@ TriangleMesh buildXbloc(double t, double* cadVolume = nullptr) {
     for (double sz : {-1.0, 1.0}) {
       const Vec3 axis = Vec3(sx, 0.0, sz).normalized();
       const Vec3 across = Vec3(-sz, 0.0, sx).normalized(); // in the x-z plane, normal to the leg
-      limbs.push_back(addLoft({square(Vec3::Zero(), across, ey, t), square(length * axis, across, ey, t)}));
+      limbs.push_back(addPlanarLoft({squareSection(Vec3::Zero(), across, ey, t), squareSection(length * axis, across, ey, t)}));
     }
   }
   // Noses: square prisms along -/+y from the centre to the box faces.
   for (double sy : {-1.0, 1.0}) {
-    limbs.push_back(addLoft({square(Vec3::Zero(), ez, ex, t), square(0.5 * sy * ey, ez, ex, t)}));
+    limbs.push_back(addPlanarLoft({squareSection(Vec3::Zero(), ez, ex, t), squareSection(0.5 * sy * ey, ez, ex, t)}));
   }
   const auto solid = session.fuse({body}, limbs);
   if (cadVolume != nullptr) {
