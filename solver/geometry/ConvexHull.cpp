@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 
 // Qhull's C headers define short macros (True, False, qh, FOREACH...): include them last.
@@ -182,12 +181,16 @@ Vec3 meanOf(const std::vector<Vec3>& points) {
   return mean / static_cast<double>(points.size());
 }
 
-/// Smallest interior angle of triangle (a, b, c) (unit: rad); 0 for a degenerate one.
-double minAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
-  const double alpha = angle(b - a, c - a);
-  const double beta = angle(a - b, c - b);
-  return std::min({alpha, beta, std::numbers::pi - alpha - beta});
+/// Shape quality of triangle (a, b, c): minus the largest cosine of its angles, i.e. a monotone
+/// function of its smallest angle (-1 for a degenerate triangle, -0.5 for an equilateral one).
+/// Cosines need only + * / sqrt, which round identically everywhere, so the triangulation chosen
+/// does not depend on the maths library (random rocks must be the same on every platform).
+double shapeQuality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto cosine = [](const Vec3& u, const Vec3& v) {
+    const double lengths = std::sqrt(u.squaredNorm() * v.squaredNorm());
+    return lengths > 0.0 ? u.dot(v) / lengths : 1.0;
+  };
+  return -std::max({cosine(b - a, c - a), cosine(a - b, c - b), cosine(a - c, b - c)});
 }
 
 /// Max-min-angle triangulation of a convex polygon, appended to `out` with the polygon's winding.
@@ -201,7 +204,7 @@ void triangulatePolygon(const std::vector<Vec3>& vertices, const std::vector<std
     out.push_back({polygon[0], polygon[1], polygon[2]});
     return;
   }
-  // best[i][j]: largest achievable smallest angle when triangulating the sub-polygon i..j.
+  // best[i][j]: best achievable worst shapeQuality when triangulating the sub-polygon i..j.
   // Any triangulation of a convex polygon is a tree of triangles (i, k, j), i < k < j, so the
   // optimum of the max-min criterion decomposes and the dynamic programme is exact.
   const double none = std::numeric_limits<double>::infinity();
@@ -210,10 +213,10 @@ void triangulatePolygon(const std::vector<Vec3>& vertices, const std::vector<std
   for (std::size_t length = 2; length < n; ++length) {
     for (std::size_t i = 0; i + length < n; ++i) {
       const std::size_t j = i + length;
-      double value = -1.0;
+      double value = -2.0; // below any quality, so some k is always chosen
       for (std::size_t k = i + 1; k < j; ++k) {
         const double q = std::min({best[i * n + k], best[k * n + j],
-                                   minAngle(vertices[polygon[i]], vertices[polygon[k]], vertices[polygon[j]])});
+                                   shapeQuality(vertices[polygon[i]], vertices[polygon[k]], vertices[polygon[j]])});
         if (q > value) {
           value = q;
           split[i * n + j] = k;
@@ -294,7 +297,13 @@ ConvexPolyhedron convexHalfspaceIntersection(const std::vector<Halfspace>& halfs
     }
     dual.push_back(h.normal / margin);
   }
-  checkPoints(dual, source + " (dual points)");
+  try {
+    checkPoints(dual, source);
+  } catch (const core::InputError&) {
+    // Dual points in one plane (or line) means a direction that no half-space limits.
+    core::failInput(source, "the intersection of the {} half-spaces is unbounded: their normals do not surround the "
+                    "interior point in 3-d; add half-spaces facing the open directions", halfspaces.size());
+  }
   // The dual hull is taken about the origin (= the interior point): its facet offsets must stay in
   // that frame, so no shift here.
   const RawHull raw = runQhull(dual, Vec3::Zero(), true, source);

@@ -47,7 +47,8 @@ struct SurfaceRefinementSettings {
 ///      closed meshes are covered by the guarantees above.
 /// Throws core::InputError if maxEdgeLength is not positive and finite, or if it would make more
 /// than settings.maxTriangles triangles (the message gives the smallest allowed size).
-TriangleMesh refineSurface(const TriangleMesh& mesh, double maxEdgeLength, const SurfaceRefinementSettings& settings = {});
+TriangleMesh refineSurface(const TriangleMesh& mesh, double maxEdgeLength,
+                           const SurfaceRefinementSettings& settings = {});
 
 /// Refine to about `targetTriangles` triangles (never fewer than the input has): picks the edge
 /// size h from the surface area, refines, corrects h once from the count obtained and keeps the

@@ -160,13 +160,23 @@ TEST(HalfspaceIntersection, CubeFromSixPlanesIgnoresARedundantSeventh) {
 }
 
 TEST(HalfspaceIntersection, RefusesUnboundedAndBadInteriorPoint) {
+  const auto expectUnbounded = [](const std::vector<Halfspace>& planes) {
+    try {
+      (void)convexHalfspaceIntersection(planes, Vec3::Constant(0.5));
+      ADD_FAILURE() << "no error";
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("unbounded"), std::string::npos) << e.what();
+    }
+  };
   std::vector<Halfspace> planes;
   for (int k = 0; k < 3; ++k) {
     planes.push_back({-Vec3::Unit(k), 0.0});
   }
   planes.push_back({Vec3(1, 0, 0), 1.0});
-  planes.push_back({Vec3(0, 1, 0), 1.0}); // nothing limits +z
-  EXPECT_THROW((void)convexHalfspaceIntersection(planes, Vec3::Constant(0.5)), core::InputError);
+  planes.push_back({Vec3(0, 1, 0), 1.0});
+  expectUnbounded(planes); // nothing limits +z
+  // A square prism: normals all in the x-y plane, open along z both ways.
+  expectUnbounded({{Vec3(1, 0, 0), 1.0}, {Vec3(-1, 0, 0), 0.0}, {Vec3(0, 1, 0), 1.0}, {Vec3(0, -1, 0), 0.0}});
   planes.push_back({Vec3(0, 0, 1), 1.0});
   EXPECT_NO_THROW((void)convexHalfspaceIntersection(planes, Vec3::Constant(0.5)));
   EXPECT_THROW((void)convexHalfspaceIntersection(planes, Vec3(2.0, 0.5, 0.5)), core::InputError);
@@ -263,35 +273,49 @@ TEST(Rock, PointCountSetsTheFacetCount) {
 }
 
 TEST(VoronoiRock, FacetEdgesAreNotTiny) {
-  // The generator drops facets that make edges shorter than 3 % of the bounding-box diagonal. Facet
-  // edges are the mesh edges whose two triangles are not coplanar (diagonals inside a facet are
-  // not checked: a sharp facet corner can make a short diagonal). The final stretch to the exact
-  // box proportions changes lengths by a few percent, hence the limit 2.5 % here.
-  std::size_t facetEdges = 0;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    ShapeRequest request;
-    request.seed = seed;
-    const TriangleMesh rock = makeShape("voronoi-rock", request);
-    const double diagonal = rock.bounds().size().norm();
-    std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::size_t>> edges;
-    for (std::size_t t = 0; t < rock.triangleCount(); ++t) {
-      const auto& f = rock.triangles[t];
-      for (int k = 0; k < 3; ++k) {
-        edges[{std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])}].push_back(t);
+  // The generator drops facets that make edges shorter than 0.2 x sqrt(area / neighbours), the
+  // mean facet size. Facet edges are the mesh edges whose two triangles are not coplanar
+  // (diagonals inside a facet are not checked: a sharp facet corner can make a short diagonal).
+  // The final stretch to the exact box proportions changes lengths and area by a few percent,
+  // hence 0.17 here.
+  std::map<double, double> meanFacets;
+  for (const double neighbours : {30.0, 100.0}) {
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      ShapeRequest request;
+      request.seed = seed;
+      request.params = {{"neighbours", neighbours}};
+      const TriangleMesh rock = makeShape("voronoi-rock", request);
+      const double minEdge = 0.17 * std::sqrt(rock.surfaceArea() / neighbours);
+      std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::size_t>> edges;
+      for (std::size_t t = 0; t < rock.triangleCount(); ++t) {
+        const auto& f = rock.triangles[t];
+        for (int k = 0; k < 3; ++k) {
+          edges[{std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])}].push_back(t);
+        }
       }
-    }
-    for (const auto& [edge, faces] : edges) {
-      ASSERT_EQ(faces.size(), 2u);
-      const Vec3 n0 = rock.doubleAreaNormal(faces[0]).normalized();
-      const Vec3 n1 = rock.doubleAreaNormal(faces[1]).normalized();
-      if (n0.dot(n1) < 1.0 - 1e-9) {
-        ++facetEdges;
-        EXPECT_GE((rock.vertices[edge.first] - rock.vertices[edge.second]).norm(), 0.025 * diagonal)
-            << "seed " << seed;
+      std::size_t facetEdges = 0;
+      for (const auto& [edge, faces] : edges) {
+        ASSERT_EQ(faces.size(), 2u);
+        const Vec3 n0 = rock.doubleAreaNormal(faces[0]).normalized();
+        const Vec3 n1 = rock.doubleAreaNormal(faces[1]).normalized();
+        if (n0.dot(n1) < 1.0 - 1e-9) {
+          ++facetEdges;
+          EXPECT_GE((rock.vertices[edge.first] - rock.vertices[edge.second]).norm(), minEdge)
+              << "seed " << seed << ", " << neighbours << " neighbours";
+        }
       }
+      // Facets by Euler's formula for the polyhedron (every mesh vertex is a facet corner):
+      // F = E - V + 2. The pruning stops at 10 facets.
+      const auto facets = static_cast<double>(facetEdges) - static_cast<double>(rock.vertexCount()) + 2.0;
+      EXPECT_GE(facets, 10.0) << "seed " << seed;
+      meanFacets[neighbours] += facets / 10.0;
     }
   }
-  EXPECT_GT(facetEdges, 20u * 30u); // a real polyhedron each time, not a handful of faces
+  // More neighbours, more (smaller) facets, though far fewer than the neighbours: most of them are
+  // shadowed by nearer ones, as in a random Voronoi tessellation (about 15.5 faces per cell).
+  // Measured about 16 and 28.
+  EXPECT_GT(meanFacets[100.0], 1.3 * meanFacets[30.0]);
+  EXPECT_GT(meanFacets[30.0], 12.0);
 }
 
 } // namespace

@@ -5,20 +5,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace armour::geometry::shapes {
 namespace {
 
-/// Triangles with a smallest angle below this are "caps" to remove (unit: degree).
-constexpr double kMinAngleDeg = 8.0;
+/// Triangles with an angle below 8 degrees are "caps" to remove: the cosine of 8 degrees (unit: -).
+/// Angles are compared by their cosines, which need only + * / sqrt (identical on every platform;
+/// acos/atan2 are not), so a seed gives the same rock everywhere.
+constexpr double kMaxCosine = 0.99026806874157036; // cos(8 degrees)
 
-/// Interior angle at corner k of triangle t (unit: degree).
-double cornerAngle(const TriangleMesh& mesh, std::size_t t, int k) {
+/// Cosine of the interior angle at corner k of triangle t (unit: -).
+double cornerCosine(const TriangleMesh& mesh, std::size_t t, int k) {
   const auto c = mesh.corners(t);
   const Vec3 u = c[(k + 1) % 3] - c[k];
   const Vec3 v = c[(k + 2) % 3] - c[k];
-  return std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / std::numbers::pi;
+  return u.dot(v) / std::sqrt(u.squaredNorm() * v.squaredNorm());
 }
 
 /// Convex hull of the points after removing "cap" vertices. Radial jitter can leave a hull vertex
@@ -30,14 +31,14 @@ TriangleMesh hullWithoutCaps(std::vector<Vec3> points, const std::string& source
   for (;;) {
     const ConvexPolyhedron hull = convexHullPolyhedron(points, source);
     TriangleMesh mesh = triangulateFaces(hull);
-    double worst = kMinAngleDeg;
+    double worst = kMaxCosine;
     std::int32_t cap = -1;
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-      std::array<double, 3> angle{cornerAngle(mesh, t, 0), cornerAngle(mesh, t, 1), cornerAngle(mesh, t, 2)};
-      const double smallest = *std::min_element(angle.begin(), angle.end());
-      if (smallest < worst) {
-        worst = smallest;
-        const auto obtuse = std::max_element(angle.begin(), angle.end()) - angle.begin();
+      const std::array<double, 3> cosine{cornerCosine(mesh, t, 0), cornerCosine(mesh, t, 1), cornerCosine(mesh, t, 2)};
+      const double sharpest = *std::max_element(cosine.begin(), cosine.end()); // smallest angle
+      if (sharpest > worst) {
+        worst = sharpest;
+        const auto obtuse = std::min_element(cosine.begin(), cosine.end()) - cosine.begin(); // largest angle
         cap = hull.vertexSource[mesh.triangles[t][obtuse]];
       }
     }

@@ -11,6 +11,7 @@
 
 #include "geometry/TriangleMesh.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <random>

@@ -11,12 +11,14 @@
 namespace armour::geometry::shapes {
 namespace {
 
-/// Facets smaller than this share of the total area are removed (unit: -): a quarried block has
-/// facets of comparable size, and tiny ones only make slivers for contact and meshing.
-constexpr double kMinFacetAreaShare = 0.005;
-/// Edges shorter than this share of the bounding-box diagonal are removed with the smaller of
-/// their two facets (unit: -), for the same reason.
-constexpr double kMinEdgeShare = 0.03;
+/// Facets smaller than this fraction of the mean facet area (total area / requested neighbours)
+/// are removed (unit: -): a quarried block has facets of comparable size, and tiny ones only make
+/// slivers for contact and meshing. 0.15 is 0.5 % of the area for the default 30 neighbours.
+constexpr double kMinFacetAreaFraction = 0.15;
+/// Edges shorter than this fraction of the mean facet size sqrt(total area / requested neighbours)
+/// are removed with the smaller of their two facets (unit: -), for the same reason. 0.2 is about
+/// 3.5 % of the bounding-box diagonal for the default rock.
+constexpr double kMinEdgeFraction = 0.2;
 /// Pruning stops at this many facets (unit: -), whatever their size: below it the cell would no
 /// longer look like a rock (a cube has 6).
 constexpr std::size_t kMinFacets = 10;
@@ -31,7 +33,7 @@ double polygonArea(const ConvexPolyhedron& cell, const std::vector<std::int32_t>
 
 /// The face whose half-space should go next, or -1 when every facet and edge is large enough.
 /// Faces of locked half-spaces (whose removal would unbound the cell) are never chosen.
-int weakestFace(const ConvexPolyhedron& cell, const std::vector<char>& locked) {
+int weakestFace(const ConvexPolyhedron& cell, const std::vector<char>& locked, std::size_t neighbours) {
   std::vector<double> areas;
   double total = 0.0;
   for (const auto& face : cell.faces) {
@@ -39,7 +41,8 @@ int weakestFace(const ConvexPolyhedron& cell, const std::vector<char>& locked) {
     total += areas.back();
   }
   int weakest = -1;
-  double weakestArea = kMinFacetAreaShare * total;
+  const double meanArea = total / static_cast<double>(neighbours);
+  double weakestArea = kMinFacetAreaFraction * meanArea;
   for (std::size_t f = 0; f < areas.size(); ++f) {
     if (areas[f] < weakestArea && locked[cell.faceSource[f]] == 0) {
       weakest = static_cast<int>(f);
@@ -49,11 +52,7 @@ int weakestFace(const ConvexPolyhedron& cell, const std::vector<char>& locked) {
   if (weakest >= 0) {
     return weakest;
   }
-  Box3 box;
-  for (const auto& v : cell.vertices) {
-    box.extend(v);
-  }
-  const double minEdge = kMinEdgeShare * box.size().norm();
+  const double minEdge = kMinEdgeFraction * std::sqrt(meanArea);
   // Edge -> the faces on either side; the shortest too-short edge loses its smaller face.
   std::map<std::pair<std::int32_t, std::int32_t>, std::vector<int>> edgeFaces;
   for (std::size_t f = 0; f < cell.faces.size(); ++f) {
@@ -89,15 +88,18 @@ ShapeGenerator voronoiRockGenerator() {
   g.summary = "random angular rock: Voronoi cell of a seed among random neighbours (sharp planar facets, seeded)";
   g.proportions = "Voronoi cell of a seed at the centre among 30 neighbours placed so that the bisector planes "
                   "are tangent to an ellipsoid 1 : aspect_b : aspect_c (x : y : z, default 1 : 0.75 : 0.55, LT = 1.8) "
-                  "at points spread evenly at random over it, plane distances jittered by +-20 %; facets under 0.5 % "
-                  "of the area or with an edge under 3 % of the diagonal are dropped (down to 10 facets at least); "
-                  "finally stretched so the bounding box is exactly 1 : aspect_b : aspect_c; longest axis along x";
+                  "at points spread evenly at random over it, plane distances jittered by +-20 %; facets under 0.15 x "
+                  "the mean facet area (total / neighbours) or with an edge under 0.2 x the mean facet size are "
+                  "dropped (down to 10 facets at least), leaving about 16 facets; finally stretched so the "
+                  "bounding box is exactly 1 : aspect_b : aspect_c; longest axis along x";
   g.source = "shape measure LT from the Rock Manual (CIRIA, CUR, CETMEF 2007, section 3.4) and EN 13383-1 (typical "
-             "LT about 1.5-2 for quarried armourstone, value recalled, not re-checked); the Voronoi-cell construction "
-             "(as used for fractured-rock fragments in DEM) is a modelling choice, not a measured rock";
+             "LT about 1.5-2 for quarried armourstone, value recalled, not re-checked); Voronoi cells are a common way "
+             "to make random convex polyhedral particles for DEM: a modelling choice giving sharp planar facets like "
+             "blasted rock, not a measured rock";
   g.parameters = {
       {"neighbours", 30.0, 10.0, 120.0, "-",
-       "number of neighbour seeds, i.e. candidate facets (small facets are then merged away)"},
+       "number of neighbour seeds, i.e. candidate facets; nearer ones shadow others and tiny facets are dropped, "
+       "so a rock has about 16 facets for 30 neighbours and 28 for 100 (spread 0.2)"},
       {"aspect_b", 0.75, 0.2, 1.0, "-", "b/a: semi-axis along y over the (longest) semi-axis along x"},
       {"aspect_c", 0.55, 0.2, 1.0, "-", "c/a: semi-axis along z over the semi-axis along x; LT about a/c"},
       {"spread", 0.2, 0.0, 0.5, "-",
@@ -135,7 +137,7 @@ ShapeGenerator voronoiRockGenerator() {
     std::vector<char> removed(planes.size(), 0);
     std::vector<char> locked(planes.size(), 0);
     for (std::size_t iteration = 0; iteration < count; ++iteration) {
-      const int face = cell.faces.size() > kMinFacets ? weakestFace(cell, locked) : -1;
+      const int face = cell.faces.size() > kMinFacets ? weakestFace(cell, locked, count) : -1;
       if (face < 0) {
         break;
       }
