@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file ContactLaw.hpp
+/// The force law at one contact sample point: linear penalty normal force distributed as a
+/// pressure, viscous damping set from a target coefficient of restitution, and Coulomb friction
+/// with a real static regime: a tangential spring whose stretch is remembered from step to step
+/// (Cundall and Strack 1979; the Y-code / FDEM lineage of seed 002), capped at mu_s |Fn| while
+/// sticking and mu_d |Fn| while sliding. A viscous-only friction that lets blocks creep is not
+/// used: a block held by friction stays put, to the elastic stretch of its springs.
+///
+/// Law (docs/theory.md, "Contact law"), for a sample point of tributary area a at depth d > 0,
+/// outward normal n of the other body, relative velocity v = v_A - v_B at the point:
+///   k      = E_p a / L                        normal stiffness (N/m); E_p penalty modulus (Pa),
+///                                             L the pair's length scale (m)
+///   Fn     = max(0, k d - beta k (v . n))     normal force on A along n (N)
+///   beta   = 2 zeta sqrt(m_eff / K_pair)      (s); K_pair = sum of k over the pair's engaged points,
+///                                             so the whole contact patch has damping ratio zeta
+///   zeta   from the coefficient of restitution e of the clamped (no-attraction) dashpot,
+///          e = exp(-zeta t*) with t* the end of contact (Schwager and Poschel 2007; overdamped
+///          for e < exp(-2) = 0.135), inverted by bisection
+///   s     <- R(s) + v_t dt                    tangential spring stretch (m), R rotates the old
+///                                             stretch into the current tangent plane
+///   Ft     = -k_t s - beta k_t v_t,  k_t = r_t k
+///   if |Ft| > mu Fn (mu = mu_s sticking, mu_d sliding): Ft <- mu Fn Ft/|Ft|, s <- -Ft / k_t, sliding
+
+#include <Eigen/Core>
+
+namespace armour::contact {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Material pair parameters of the law.
+struct ContactParameters {
+  double penaltyModulus = 1.0e9;      ///< E_p: normal pressure per unit relative depth (unit: Pa)
+  double lengthScale = 1.0;           ///< L: depth is measured relative to it (unit: m)
+  double frictionStatic = 0.75;       ///< mu_s, Coulomb coefficient while sticking (unit: -)
+  double frictionDynamic = 0.75;      ///< mu_d, Coulomb coefficient while sliding (unit: -)
+  double dampingRatio = 0.0;          ///< zeta of the contact patch (unit: -)
+  double tangentialStiffnessRatio = 1.0; ///< r_t = k_t / k (unit: -)
+};
+
+/// Restitution of a linear spring-dashpot with damping ratio zeta whose force is clamped at zero
+/// (contact ends when the force vanishes; Schwager and Poschel 2007, Granular Matter 9, 465-469).
+double restitutionOfClampedDashpot(double zeta);
+
+/// Damping ratio giving restitution e (0 < e <= 1) for the clamped law (inverse of the above).
+/// Small e needs zeta > 1 (e = 0.01: zeta = 4.97), which lowers the stable time step.
+double dampingRatioFromRestitution(double restitution);
+
+/// What a point remembers between steps.
+struct PointHistory {
+  Vec3 stretch = Vec3::Zero(); ///< tangential spring stretch s (unit: m), world frame
+  bool sliding = false;        ///< true while the point slides (mu_d applies)
+};
+
+/// One engaged sample point.
+struct PointContact {
+  Vec3 normal;           ///< unit normal, pointing from B into A (the direction A is pushed)
+  double depth = 0.0;    ///< penetration d > 0 (unit: m)
+  double area = 0.0;     ///< tributary area a of the sample point (unit: m^2)
+  Vec3 relativeVelocity; ///< v_A - v_B at the point (unit: m/s)
+};
+
+struct PointForce {
+  Vec3 force = Vec3::Zero(); ///< force on A (unit: N); B receives the opposite
+  double normalForce = 0.0;  ///< |Fn| (unit: N)
+  PointHistory history;      ///< state to keep for the next step
+};
+
+/// Normal stiffness k = E_p a / L of a point (unit: N/m).
+inline double pointStiffness(const ContactParameters& p, double area) { return p.penaltyModulus * area / p.lengthScale; }
+
+/// beta = 2 zeta sqrt(m_eff / K_pair) (unit: s): damping time of the pair's engaged patch.
+/// @param effectiveMass m_eff of the pair (kg); @param pairStiffness sum of k of engaged points (N/m)
+double dampingTime(const ContactParameters& p, double effectiveMass, double pairStiffness);
+
+/// Evaluate the law at one point. @param beta from dampingTime; @param dt time step (s).
+PointForce evaluatePointContact(const ContactParameters& p, const PointContact& c, const PointHistory& previous,
+                                double beta, double dt);
+
+} // namespace armour::contact

@@ -1,0 +1,236 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/Scene.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace armour::io {
+
+Vec3 HeightField::alongX() const { return Vec3(1.0, 0.0, tanAlpha).normalized(); }
+
+Vec3 HeightField::corner(int ix, int iy) const {
+  return origin + (ix * cellSize) * alongX() + Vec3(0.0, iy * cellSize, 0.0);
+}
+
+Vec3 HeightField::lowCentre(int ix, int iy) const {
+  const Vec3 centre = origin + ((ix + 0.5) * cellSize) * alongX() + Vec3(0.0, (iy + 0.5) * cellSize, 0.0);
+  return centre - Vec3(0.0, 0.0, depth(ix, iy));
+}
+
+void generateDepths(HeightField& field) {
+  std::mt19937_64 rng(field.seed);
+  const auto count = static_cast<std::size_t>(field.cellsX) * static_cast<std::size_t>(field.cellsY);
+  field.depths.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    // The top 53 bits give every double in [0, 1) on the 2^-53 lattice with equal weight.
+    const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    field.depths[i] = field.maxDepth * u;
+  }
+}
+
+std::vector<Vec2> slopeProfile(const StaticSlope& slope) {
+  const double x0 = slope.origin.x();
+  const double z0 = slope.origin.y();
+  std::vector<Vec2> points;
+  if (slope.toeHeight > 0.0) {
+    points.emplace_back(x0 - slope.toeBaseWidth, z0 - slope.toeHeight);
+    points.emplace_back(x0 - slope.toeTopWidth, z0);
+  }
+  if (points.empty() || points.back().x() < x0) points.emplace_back(x0, z0);
+  points.emplace_back(x0 + slope.crestHeight / slope.tanAlpha, z0 + slope.crestHeight);
+  return points;
+}
+
+double slopeHeight(const StaticSlope& slope, double x) {
+  const std::vector<Vec2> p = slopeProfile(slope);
+  if (x <= p.front().x()) return p.front().y();
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    if (x <= p[i].x()) {
+      const double run = p[i].x() - p[i - 1].x();
+      // A vertical toe face has zero run: x equals both ends, take the upper end (the solid's top).
+      if (run <= 0.0) return p[i].y();
+      const double t = (x - p[i - 1].x()) / run;
+      return p[i - 1].y() + t * (p[i].y() - p[i - 1].y());
+    }
+  }
+  return p.back().y();
+}
+
+Vec3 StaticWall::normal() const {
+  Vec3 n = Vec3::Zero();
+  n[axis] = atMinimum ? 1.0 : -1.0;
+  return n;
+}
+
+std::ptrdiff_t Scene::findMaterial(const std::string& materialName) const {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == materialName) return static_cast<std::ptrdiff_t>(i);
+  return -1;
+}
+
+std::ptrdiff_t Scene::findBody(const std::string& bodyName) const {
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].name == bodyName) return static_cast<std::ptrdiff_t>(i);
+  return -1;
+}
+
+Quat quaternionFromTaitBryan(double phi, double theta, double psi) {
+  // Intrinsic rotations compose to the right: the second turn is about the axis the first one
+  // produced, which is the same as turning about the fixed axes in the reverse order.
+  Quat q = Eigen::AngleAxisd(phi, Vec3::UnitX()) * Eigen::AngleAxisd(theta, Vec3::UnitY()) *
+           Eigen::AngleAxisd(psi, Vec3::UnitZ());
+  q.normalize();
+  return q;
+}
+
+namespace {
+
+std::string vec(const Vec3& v) { return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z()); }
+
+std::string quat(const Quat& q) { return fmt::format("[{}, {}, {}, {}]", q.w(), q.x(), q.y(), q.z()); }
+
+/// The same rotation as x-y'-z'' angles in degrees, theta in [-90, 90] (for reading the log; the
+/// quaternion beside it is exact). From R = Rx(phi) Ry(theta) Rz(psi): R02 = sin theta,
+/// R12 = -sin phi cos theta, R22 = cos phi cos theta, R01 = -cos theta sin psi, R00 = cos theta cos psi.
+std::string eulerDeg(const Quat& q) {
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  Vec3 a(std::atan2(-r(1, 2), r(2, 2)), std::asin(std::clamp(r(0, 2), -1.0, 1.0)), std::atan2(-r(0, 1), r(0, 0)));
+  // At theta = +-90 degrees only phi +- psi is defined (gimbal lock): report psi = 0 and read phi
+  // from R = Rx(phi) Ry(theta), where R21 = sin phi and R11 = cos phi.
+  if (std::hypot(r(0, 0), r(0, 1)) < 1e-9) a = Vec3(std::atan2(r(2, 1), r(1, 1)), a.y(), 0.0);
+  a *= 180.0 / std::numbers::pi;
+  // Round-off residues (-0, 1e-15) say nothing to a reader.
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(a[i]) < 1e-9) a[i] = 0.0;
+  return fmt::format("[{:.6g}, {:.6g}, {:.6g}]", a.x(), a.y(), a.z());
+}
+
+std::string heightField(const HeightField& f) {
+  double lo = f.maxDepth;
+  double hi = 0.0;
+  for (double d : f.depths) {
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  if (f.depths.empty()) lo = 0.0;
+  return fmt::format("cell_size = {} m, cells = {} x {} (extent {} x {} m along the surface), max_depth = {} m, "
+                     "seed = {}, depths drawn in [{:.4g}, {:.4g}] m",
+                     f.cellSize, f.cellsX, f.cellsY, f.cellsX * f.cellSize, f.cellsY * f.cellSize, f.maxDepth, f.seed,
+                     lo, hi);
+}
+
+} // namespace
+
+std::string describeScene(const Scene& s) {
+  const auto materialName = [&](std::size_t i) { return i < s.materials.size() ? s.materials[i].name : "?"; };
+  std::string out;
+  const auto line = [&out](const std::string& text) {
+    out += text;
+    out += '\n';
+  };
+
+  line(fmt::format("scene {} (from {}, paths relative to {})", s.name, s.sourceName, s.baseDir.string()));
+  if (!s.description.empty()) line(fmt::format("  description: {}", s.description));
+  line(fmt::format("  gravity = {} m/s^2", vec(s.gravity)));
+  line(fmt::format("  duration = {} s", s.duration));
+  if (s.timeStep.automatic)
+    line(fmt::format("  time_step = auto (time_step_safety = {} of the stability limit)", s.timeStep.safety));
+  else
+    line(fmt::format("  time_step = {} s (fixed; time_step_safety = {} unused)", s.timeStep.value, s.timeStep.safety));
+  line(fmt::format("  seed = {}", s.seed));
+
+  line("contact:");
+  line(fmt::format("  sample_spacing = {} Dn", s.contact.sampleSpacing));
+  line(fmt::format("  level_set_cells_per_dn = {} (cells per Dn)", s.contact.levelSetCellsPerDn));
+  line(fmt::format("  max_overlap = {} Dn", s.contact.maxOverlap));
+
+  line("output:");
+  line(fmt::format("  folder = {}", s.output.folder.string()));
+  line(fmt::format("  vtk_interval = {} s{}", s.output.vtkInterval, s.output.vtkInterval > 0 ? "" : " (off)"));
+  line(fmt::format("  series_interval = {} s{}", s.output.seriesInterval, s.output.seriesInterval > 0 ? "" : " (off)"));
+  line(fmt::format("  checkpoint_interval = {} s{}", s.output.checkpointInterval,
+                   s.output.checkpointInterval > 0 ? "" : " (off)"));
+  line(fmt::format("  checkpoint_wall_minutes = {} min{}", s.output.checkpointWallMinutes,
+                   s.output.checkpointWallMinutes > 0 ? "" : " (off)"));
+  line(fmt::format("  contacts = {}", s.output.contacts));
+
+  line("sleep:");
+  line(fmt::format("  enabled = {}", s.sleep.enabled));
+  line(fmt::format("  linear_speed = {} m/s", s.sleep.linearSpeed));
+  line(fmt::format("  angular_speed = {} rad/s", s.sleep.angularSpeed));
+  line(fmt::format("  time = {} s", s.sleep.time));
+
+  line(fmt::format("materials ({}):", s.materials.size()));
+  for (const Material& m : s.materials) {
+    const std::string dissipation = m.restitution ? fmt::format("restitution = {} (-)", *m.restitution)
+                                                  : fmt::format("damping_ratio = {} (-)", m.dampingRatio.value_or(0.0));
+    line(fmt::format("  {}: density = {} kg/m^3, friction static = {}, dynamic = {} (-), {}, penalty = {:g} Pa, "
+                     "tangential_stiffness_ratio = {} (-)",
+                     m.name, m.density, m.frictionStatic, m.frictionDynamic, dissipation, m.penalty,
+                     m.tangentialStiffnessRatio));
+  }
+
+  line(fmt::format("shapes ({}):", s.shapes.size()));
+  for (const ShapeSpec& sh : s.shapes) {
+    if (sh.source == ShapeSource::MeshFile) {
+      line(fmt::format("  {}: mesh = {}", sh.name, sh.meshFile.string()));
+    } else {
+      std::vector<std::string> params;
+      for (const auto& [key, value] : sh.params) params.push_back(fmt::format("{} = {}", key, value));
+      line(fmt::format("  {}: generator = {}, params = {{{}}} (others at their defaults), seed = {}", sh.name,
+                       sh.generator, fmt::join(params, ", "), sh.seed));
+    }
+  }
+
+  line(fmt::format("bodies ({}):", s.bodies.size()));
+  for (const Body& b : s.bodies) {
+    const std::string shapeName = b.shape < s.shapes.size() ? s.shapes[b.shape].name : "?";
+    const std::string size = b.volume
+                                 ? fmt::format("volume = {} m^3 (dn = {} m)", *b.volume, std::cbrt(*b.volume))
+                                 : fmt::format("scale = {} (the mesh's own size)", b.scale);
+    line(fmt::format("  {}: shape = {}, {}, material = {}, position = {} m, quaternion = {} (euler_deg = {}), "
+                     "velocity = {} m/s, angular_velocity = {} rad/s, fixed = {}",
+                     b.name, shapeName, size, materialName(b.material), vec(b.position), quat(b.orientation),
+                     eulerDeg(b.orientation), vec(b.velocity), vec(b.angularVelocity), b.fixed));
+  }
+
+  line(fmt::format("static ({}):", s.statics.size()));
+  for (const StaticPlane& p : s.statics.planes)
+    line(fmt::format("  plane {}: point = {} m, normal = {}, material = {}", p.name, vec(p.point), vec(p.normal),
+                     materialName(p.material)));
+  for (const StaticSlope& sl : s.statics.slopes) {
+    line(fmt::format("  slope {}: origin = [{}, {}] m (x, z), tan = {} (angle_deg = {:.6g}, cot = {:.6g}), "
+                     "crest_height = {} m, toe_height = {} m, toe_top_width = {} m, toe_base_width = {} m, "
+                     "material = {}",
+                     sl.name, sl.origin.x(), sl.origin.y(), sl.tanAlpha, std::atan(sl.tanAlpha) * 180.0 / std::numbers::pi,
+                     1.0 / sl.tanAlpha, sl.crestHeight, sl.toeHeight, sl.toeTopWidth, sl.toeBaseWidth,
+                     materialName(sl.material)));
+    if (sl.roughness)
+      line(fmt::format("    roughness: {}, y from {} m", heightField(*sl.roughness), sl.roughness->origin.y()));
+  }
+  for (const StaticHeightField& h : s.statics.heightFields)
+    line(fmt::format("  heightfield {}: origin = {} m, tan = {}, {}, material = {}", h.name, vec(h.field.origin),
+                     h.field.tanAlpha, heightField(h.field), materialName(h.material)));
+  for (const StaticWall& w : s.statics.walls)
+    line(fmt::format("  wall {}: axis = {}, position = {} m, side = {} (normal {}), material = {}", w.name,
+                     w.axis == 0 ? "x" : "y", w.position, w.atMinimum ? "min" : "max", vec(w.normal()),
+                     materialName(w.material)));
+  for (const StaticMesh& m : s.statics.meshes)
+    line(fmt::format("  mesh {}: file = {}, position = {} m, quaternion = {} (euler_deg = {}), scale = {}, "
+                     "material = {}",
+                     m.name, m.file.string(), vec(m.position), quat(m.orientation), eulerDeg(m.orientation), m.scale,
+                     materialName(m.material)));
+
+  if (!s.warnings.empty()) {
+    line(fmt::format("warnings ({}):", s.warnings.size()));
+    for (const std::string& w : s.warnings) line("  " + w);
+  }
+  return out;
+}
+
+} // namespace armour::io

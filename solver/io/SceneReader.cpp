@@ -1,0 +1,984 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/SceneReader.hpp"
+
+#include "core/Error.hpp"
+#include "core/Log.hpp"
+#include "geometry/MeshFile.hpp"
+#include "geometry/ShapeLibrary.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+namespace armour::io {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// Typos beyond this many bodies (e.g. count: [1000, 1000, 1000]) are refused rather than
+/// allocated: a million rigid bodies is far beyond what one run of this solver is meant for.
+constexpr std::size_t kMaxBodies = 1000000;
+/// Height-field cells, same reasoning (1e7 cells of 1 m is a 3 km square).
+constexpr std::size_t kMaxCells = 10000000;
+
+// ---------------------------------------------------------------------------------------------
+// Where things are, and how errors are worded
+// ---------------------------------------------------------------------------------------------
+
+struct Context {
+  std::string source;             ///< file name for messages
+  std::filesystem::path baseDir;  ///< relative paths resolve here
+  std::uint64_t seed = 1;         ///< the scene seed (default of the other seeds)
+  std::vector<std::string>* warnings = nullptr;
+};
+
+std::string lineOf(const YAML::Mark& mark) { return mark.line >= 0 ? fmt::format(":{}", mark.line + 1) : ""; }
+
+/// "scene.yaml:12: bodies[3].volume = -2: must be > 0 ..."; `subject` is the key path, with the
+/// value when there is one.
+[[noreturn]] void fail(const Context& c, const YAML::Mark& mark, const std::string& subject, const std::string& message) {
+  // An empty subject is the top level of the file: its line says nothing, so it is left out.
+  if (subject.empty()) throw core::InputError(fmt::format("{}: {}", c.source, message));
+  throw core::InputError(fmt::format("{}{}: {}: {}", c.source, lineOf(mark), subject, message));
+}
+
+void warn(const Context& c, const YAML::Mark& mark, const std::string& subject, const std::string& message) {
+  std::string text = fmt::format("{}{}: {}: {}", c.source, lineOf(mark), subject, message);
+  core::logger("io")->warn("{}", text);
+  if (c.warnings) c.warnings->push_back(std::move(text));
+}
+
+std::string child(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
+}
+
+std::string indexed(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
+
+/// The value as the user wrote it, on one line.
+std::string valueText(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "(nothing)";
+  if (node.IsScalar()) return node.Scalar();
+  std::vector<std::string> parts;
+  if (node.IsSequence()) {
+    for (const auto& item : node) parts.push_back(valueText(item));
+    return fmt::format("[{}]", fmt::join(parts, ", "));
+  }
+  for (const auto& kv : node) parts.push_back(fmt::format("{}: {}", valueText(kv.first), valueText(kv.second)));
+  return fmt::format("{{{}}}", fmt::join(parts, ", "));
+}
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// " (did you mean 'x'?)" for a near miss, else "".
+std::string suggestion(std::string_view word, const std::vector<std::string_view>& valid) {
+  std::string_view best;
+  std::size_t bestDistance = 3; // more than two edits is a different word, not a typo
+  for (std::string_view v : valid) {
+    const std::size_t d = editDistance(word, v);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = v;
+    }
+  }
+  return best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The schema helper: one Block per YAML mapping, declared by its table of valid keys; each read
+// states the key's type, unit, range and default, so a reader function reads as a table.
+// ---------------------------------------------------------------------------------------------
+
+/// Allowed interval of a number.
+struct Range {
+  double lo = -kInf;
+  double hi = kInf;
+  bool loOpen = false;
+  bool hiOpen = false;
+  [[nodiscard]] bool contains(double v) const {
+    return (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+  }
+  [[nodiscard]] std::string text() const {
+    if (hi == kInf) return fmt::format("{} {}", loOpen ? ">" : ">=", lo);
+    if (lo == -kInf) return fmt::format("{} {}", hiOpen ? "<" : "<=", hi);
+    return fmt::format("in {}{}, {}{}", loOpen ? "(" : "[", lo, hi, hiOpen ? ")" : "]");
+  }
+};
+
+constexpr Range kAnyNumber{};
+constexpr Range kPositive{0.0, kInf, true, false};
+constexpr Range kNonNegative{0.0, kInf, false, false};
+constexpr Range kUnitInterval{0.0, 1.0, false, false};
+constexpr Range kFraction{0.0, 1.0, true, false}; // (0, 1]
+
+/// A number's meaning for messages: unit, range, and an example of a good value.
+struct Num {
+  std::string_view unit;
+  Range range = kAnyNumber;
+  std::string_view example = {};
+};
+
+std::string unitText(std::string_view unit) { return fmt::format("unit: {}", unit); }
+
+std::string fixText(const Num& n) {
+  return n.example.empty() ? fmt::format("({})", unitText(n.unit))
+                           : fmt::format("({}), e.g. {}", unitText(n.unit), n.example);
+}
+
+using KeyList = std::vector<std::string_view>;
+
+class Block {
+public:
+  /// Check that `node` is a mapping whose keys are all in `keys` (and not repeated).
+  Block(const Context& ctx, const YAML::Node& node, std::string path, const KeyList& keys)
+      : ctx_(ctx), node_(node), path_(std::move(path)), keys_(keys) {
+    if (node_.IsNull()) return; // "contact:" with nothing under it: all defaults
+    if (!node_.IsMap())
+      fail(ctx_, node_.Mark(), fmt::format("{} = {}", path_, valueText(node_)),
+           fmt::format("expected a mapping of key: value; valid keys are: {}", fmt::join(keys_, ", ")));
+    std::set<std::string> seen;
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(keys_.begin(), keys_.end(), key) == keys_.end())
+        fail(ctx_, kv.first.Mark(), child(path_, key),
+             fmt::format("unknown key{}; valid keys are: {}", suggestion(key, keys_), fmt::join(keys_, ", ")));
+      if (!seen.insert(key).second)
+        fail(ctx_, kv.first.Mark(), child(path_, key), "key given twice; keep one");
+    }
+  }
+
+  [[nodiscard]] const Context& context() const { return ctx_; }
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] std::string path(std::string_view key) const { return child(path_, key); }
+  [[nodiscard]] YAML::Mark mark() const { return node_.Mark(); }
+  [[nodiscard]] bool has(std::string_view key) const { return node_.IsMap() && get(key).IsDefined(); }
+  /// The value under `key` (undefined if absent). Const access: a non-const operator[] would add
+  /// the key to the document.
+  [[nodiscard]] YAML::Node get(std::string_view key) const {
+    assertDeclared(key);
+    const YAML::Node& node = node_;
+    return node[std::string(key)];
+  }
+  [[nodiscard]] YAML::Mark mark(std::string_view key) const { return has(key) ? get(key).Mark() : node_.Mark(); }
+
+  [[noreturn]] void failValue(std::string_view key, const std::string& message) const {
+    fail(ctx_, mark(key), fmt::format("{} = {}", path(key), valueText(get(key))), message);
+  }
+  [[noreturn]] void failMissing(std::string_view key, const std::string& what) const {
+    fail(ctx_, node_.Mark(), path_, fmt::format("missing key '{}': {}", key, what));
+  }
+  void warnValue(std::string_view key, const std::string& message) const {
+    warn(ctx_, mark(key), fmt::format("{} = {}", path(key), valueText(get(key))), message);
+  }
+
+  /// A number; `fallback` unset makes the key required.
+  [[nodiscard]] double number(std::string_view key, const Num& n, std::optional<double> fallback = {}) const {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      failMissing(key, fmt::format("a number {}", fixText(n)));
+    }
+    return toNumber(key, get(key), path(key), n);
+  }
+  [[nodiscard]] std::optional<double> optionalNumber(std::string_view key, const Num& n) const {
+    if (!has(key)) return std::nullopt;
+    return number(key, n);
+  }
+
+  /// A list of `count` numbers, each checked against n.range.
+  [[nodiscard]] std::vector<double> numbers(std::string_view key, std::size_t count, const Num& n,
+                                            std::optional<std::vector<double>> fallback = {}) const {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      failMissing(key, fmt::format("a list of {} numbers {}", count, fixText(n)));
+    }
+    const YAML::Node list = get(key);
+    if (!list.IsSequence() || list.size() != count)
+      failValue(key, fmt::format("expected a list of {} numbers {}", count, fixText(n)));
+    std::vector<double> values;
+    for (std::size_t i = 0; i < count; ++i) values.push_back(toNumber(key, list[i], indexed(path(key), i), n));
+    return values;
+  }
+  [[nodiscard]] Vec3 vec3(std::string_view key, const Num& n, std::optional<Vec3> fallback = {}) const {
+    if (!has(key) && fallback) return *fallback;
+    const std::vector<double> v = numbers(key, 3, n);
+    return {v[0], v[1], v[2]};
+  }
+
+  [[nodiscard]] std::string text(std::string_view key, std::string_view what, std::optional<std::string> fallback = {}) const {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      failMissing(key, std::string(what));
+    }
+    const YAML::Node value = get(key);
+    if (!value.IsScalar() || value.Scalar().empty()) failValue(key, fmt::format("expected {}", what));
+    return value.Scalar();
+  }
+
+  /// One of `choices`, returned as its index.
+  [[nodiscard]] std::size_t choice(std::string_view key, const KeyList& choices, std::optional<std::size_t> fallback = {}) const {
+    const std::string what = fmt::format("one of {}", fmt::join(choices, ", "));
+    const std::string value = text(key, what, fallback ? std::optional<std::string>(std::string(choices[*fallback])) : std::nullopt);
+    const auto found = std::find(choices.begin(), choices.end(), value);
+    if (found == choices.end()) failValue(key, fmt::format("expected {}{}", what, suggestion(value, choices)));
+    return static_cast<std::size_t>(found - choices.begin());
+  }
+
+  [[nodiscard]] bool flag(std::string_view key, bool fallback) const {
+    if (!has(key)) return fallback;
+    bool value = false;
+    if (!get(key).IsScalar() || !YAML::convert<bool>::decode(get(key), value)) failValue(key, "expected true or false");
+    return value;
+  }
+
+  /// A non-negative integer (counts, seeds), parsed exactly (no rounding through double).
+  [[nodiscard]] std::uint64_t integer(std::string_view key, std::uint64_t minimum, std::string_view what,
+                                      std::optional<std::uint64_t> fallback = {}) const {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      failMissing(key, fmt::format("an integer >= {} ({})", minimum, what));
+    }
+    return toInteger(key, get(key), path(key), minimum, what);
+  }
+  [[nodiscard]] std::vector<std::uint64_t> integers(std::string_view key, std::size_t count, std::uint64_t minimum,
+                                                    std::string_view what) const {
+    if (!has(key)) failMissing(key, fmt::format("a list of {} integers >= {} ({})", count, minimum, what));
+    const YAML::Node list = get(key);
+    if (!list.IsSequence() || list.size() != count)
+      failValue(key, fmt::format("expected a list of {} integers >= {} ({})", count, minimum, what));
+    std::vector<std::uint64_t> values;
+    for (std::size_t i = 0; i < count; ++i) values.push_back(toInteger(key, list[i], indexed(path(key), i), minimum, what));
+    return values;
+  }
+
+  /// Exactly one (or, if `optional`, at most one) of `keys` is present; returns its index or -1.
+  int oneOf(const KeyList& alternatives, bool optional, std::string_view what) const {
+    std::vector<std::string_view> present;
+    int index = -1;
+    for (std::size_t i = 0; i < alternatives.size(); ++i) {
+      if (has(alternatives[i])) {
+        present.push_back(alternatives[i]);
+        index = static_cast<int>(i);
+      }
+    }
+    const auto quoted = [](const KeyList& list) {
+      std::vector<std::string> q;
+      for (auto k : list) q.push_back(fmt::format("'{}'", k));
+      return fmt::format("{}", fmt::join(q, " or "));
+    };
+    if (present.size() > 1)
+      fail(ctx_, mark(present[1]), path_,
+           fmt::format("give only one of {} ({}); found {}", quoted(alternatives), what, quoted(present)));
+    if (present.empty() && !optional)
+      fail(ctx_, node_.Mark(), path_, fmt::format("give one of {} ({})", quoted(alternatives), what));
+    return index;
+  }
+
+  void refuse(std::string_view key, std::string_view why) const {
+    if (has(key)) fail(ctx_, mark(key), path(key), std::string(why));
+  }
+
+private:
+  void assertDeclared([[maybe_unused]] std::string_view key) const {
+    // A read of an undeclared key is a programming error: it would never be reachable by the user.
+    if (std::find(keys_.begin(), keys_.end(), key) == keys_.end())
+      throw std::logic_error(fmt::format("scene schema: key '{}' read but not declared in {}", key, path_));
+  }
+
+  double toNumber(std::string_view key, const YAML::Node& value, const std::string& valuePath, const Num& n) const {
+    const auto bad = [&](const std::string& message) {
+      fail(ctx_, value.IsDefined() ? value.Mark() : mark(key), fmt::format("{} = {}", valuePath, valueText(value)), message);
+    };
+    if (!value.IsScalar()) bad(fmt::format("expected a number {}", fixText(n)));
+    double v = 0.0;
+    if (!YAML::convert<double>::decode(value, v)) {
+      std::string lower = value.Scalar();
+      std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+      const bool nonFinite = lower == "nan" || lower == "inf" || lower == "-inf" || lower == "+inf" || lower == "infinity";
+      bad(fmt::format("{} {}", nonFinite ? "must be a finite number" : "expected a number", fixText(n)));
+    }
+    if (!std::isfinite(v)) bad(fmt::format("must be a finite number {}", fixText(n)));
+    if (!n.range.contains(v)) bad(fmt::format("must be {} {}", n.range.text(), fixText(n)));
+    return v;
+  }
+
+  std::uint64_t toInteger(std::string_view key, const YAML::Node& value, const std::string& valuePath,
+                          std::uint64_t minimum, std::string_view what) const {
+    const auto bad = [&]() {
+      fail(ctx_, value.IsDefined() ? value.Mark() : mark(key), fmt::format("{} = {}", valuePath, valueText(value)),
+           fmt::format("expected an integer >= {} ({})", minimum, what));
+    };
+    if (!value.IsScalar()) bad();
+    const std::string& s = value.Scalar();
+    std::uint64_t v = 0;
+    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (error != std::errc() || end != s.data() + s.size() || v < minimum) bad();
+    return v;
+  }
+
+  const Context& ctx_;
+  YAML::Node node_;
+  std::string path_;
+  const KeyList& keys_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Shared pieces
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kOrientationKeys{"quaternion", "euler_deg"};
+
+/// `orientation: {quaternion: [w, x, y, z]} | {euler_deg: [phi, theta, psi]}`; identity if absent.
+Quat readOrientation(const Block& parent, std::string_view key) {
+  if (!parent.has(key)) return Quat::Identity();
+  const Block b(parent.context(), parent.get(key), parent.path(key), kOrientationKeys);
+  const int which = b.oneOf(kOrientationKeys, false, "a rotation from the body frame to the world");
+  if (which == 0) {
+    const auto q = b.numbers("quaternion", 4, {"-", kAnyNumber, "[1, 0, 0, 0] for no rotation, [w, x, y, z]"});
+    const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    // 1e-300 catches an all-zero quaternion; anything representable above it can be normalised.
+    if (!(norm > 1e-300))
+      b.failValue("quaternion", "a zero quaternion is not a rotation; give [w, x, y, z] with w^2 + x^2 + y^2 + z^2 = 1, "
+                                "e.g. [1, 0, 0, 0] for no rotation");
+    Quat result(q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm);
+    // 1e-6 lets values typed to 7 digits (0.7071068) pass silently while a real slip ([1, 0, 0, 1]) is reported.
+    if (std::abs(norm - 1.0) > 1e-6)
+      b.warnValue("quaternion", fmt::format("not a unit quaternion (norm {:.9g}); normalised to [{:.9g}, {:.9g}, {:.9g}, {:.9g}]",
+                                            norm, result.w(), result.x(), result.y(), result.z()));
+    return result;
+  }
+  const auto a = b.numbers("euler_deg", 3, {"deg", kAnyNumber, "[0, 90, 0]: phi about x, theta about y', psi about z''"});
+  return quaternionFromTaitBryan(a[0] * kDeg, a[1] * kDeg, a[2] * kDeg);
+}
+
+/// Index of material `key` (required), listing the defined ones when unknown.
+std::size_t readMaterialRef(const Block& b, const Scene& scene) {
+  const std::string name = b.text("material", "the name of a material defined under 'materials'");
+  const std::ptrdiff_t index = scene.findMaterial(name);
+  if (index < 0) {
+    std::vector<std::string_view> names;
+    for (const Material& m : scene.materials) names.push_back(m.name);
+    b.failValue("material", fmt::format("unknown material{}; defined materials are: {}", suggestion(name, names),
+                                        fmt::join(names, ", ")));
+  }
+  return static_cast<std::size_t>(index);
+}
+
+/// Absolute path of a mesh file given relative to the scene folder; it must exist and have a
+/// mesh extension.
+std::filesystem::path readMeshPath(const Block& b, std::string_view key) {
+  const std::string given = b.text(key, "a mesh file path (.stl, .obj or .vtp), relative to the scene file's folder");
+  std::filesystem::path path(given);
+  if (path.is_relative()) path = b.context().baseDir / path;
+  path = std::filesystem::absolute(path).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    b.failValue(key, fmt::format("mesh file not found: {} (relative paths start from the scene file's folder {})",
+                                 path.string(), b.context().baseDir.string()));
+  try {
+    (void)geometry::meshFormatFromPath(path);
+  } catch (const core::InputError& e) {
+    b.failValue(key, e.what());
+  }
+  return path;
+}
+
+std::vector<std::string_view> generatorNames() {
+  std::vector<std::string_view> names;
+  for (const auto& g : geometry::shapeGenerators()) names.push_back(g.name);
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------
+// materials
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kMaterialKeys{"density", "friction", "restitution", "damping_ratio", "penalty", "tangential_stiffness_ratio"};
+const KeyList kFrictionKeys{"static", "dynamic"};
+
+Material readMaterial(const Context& ctx, const std::string& name, const YAML::Node& node, const std::string& path) {
+  const Block b(ctx, node, path, kMaterialKeys);
+  Material m;
+  m.name = name;
+  m.density = b.number("density", {"kg/m^3", kPositive, "2400 for concrete, 2650 for rock"});
+
+  if (!b.has("friction")) b.failMissing("friction", "Coulomb coefficient (unit: -), e.g. friction: 0.75, or "
+                                                    "friction: {static: 0.75, dynamic: 0.6}");
+  const Num friction{"-", kNonNegative, "0.75 (seed 001), 0.6 for concrete on rock"};
+  if (b.get("friction").IsMap()) {
+    const Block f(ctx, b.get("friction"), b.path("friction"), kFrictionKeys);
+    m.frictionStatic = f.number("static", friction);
+    m.frictionDynamic = f.number("dynamic", friction);
+    if (m.frictionDynamic > m.frictionStatic)
+      fail(ctx, f.mark("dynamic"), f.path(),
+           fmt::format("dynamic = {} exceeds static = {}: sliding friction cannot exceed the friction that starts "
+                       "sliding; lower dynamic or raise static (unit: -)",
+                       m.frictionDynamic, m.frictionStatic));
+  } else {
+    m.frictionStatic = m.frictionDynamic = b.number("friction", friction);
+  }
+
+  const int dissipation = b.oneOf({"restitution", "damping_ratio"}, false,
+                                  "the energy lost in a collision: restitution in (0, 1], e.g. 0.05 (seed 001), or "
+                                  "the contact's damping ratio");
+  if (dissipation == 0) {
+    // e = 0 is out: the contact law would need an infinite damping ratio to reach it.
+    m.restitution = b.number("restitution", {"-", kFraction, "0.05 for concrete (seed 001)"});
+  } else {
+    m.restitution.reset();
+    m.dampingRatio = b.number("damping_ratio", {"-", kNonNegative, "0.3; 1 = critical"});
+  }
+
+  m.penalty = b.number("penalty", {"Pa", kPositive, "1e9 (about 3 % of concrete's Young's modulus)"}, 1.0e9);
+  // Outside this band the overlap or the time step becomes unreasonable for metre-sized units:
+  // rho g Dn / p > 2e-3 (soft) or dt ~ sqrt(rho Dn^2 / p) below a tenth of a millisecond (stiff).
+  if (m.penalty < 1e7 || m.penalty > 1e11)
+    b.warnValue("penalty", "outside 1e7..1e11 Pa: expect large overlaps (soft) or a very small time step (stiff)");
+  m.tangentialStiffnessRatio = b.number("tangential_stiffness_ratio",
+                                        {"-", kFraction, "0.889 (Mindlin, Poisson ratio 0.2)"}, 8.0 / 9.0);
+  return m;
+}
+
+void readMaterials(const Context& ctx, const YAML::Node& node, Scene& scene) {
+  if (!node.IsDefined()) fail(ctx, YAML::Mark::null_mark(), "materials", "missing: define at least one material, e.g.\n"
+                                                                         "materials:\n  concrete: {density: 2400, friction: 0.75, restitution: 0.05}");
+  if (!node.IsMap() || node.size() == 0)
+    fail(ctx, node.Mark(), "materials", "expected a mapping of material names to their properties, e.g. "
+                                        "concrete: {density: 2400, friction: 0.75, restitution: 0.05}");
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string name = kv.first.Scalar();
+    if (!seen.insert(name).second) fail(ctx, kv.first.Mark(), child("materials", name), "material defined twice");
+    scene.materials.push_back(readMaterial(ctx, name, kv.second, child("materials", name)));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// shapes
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kShapeKeys{"generator", "params", "seed", "mesh"};
+
+/// A shape mapping (named under `shapes:` or inline in a body).
+ShapeSpec readShapeBlock(const Context& ctx, const YAML::Node& node, const std::string& path, const std::string& name) {
+  const Block b(ctx, node, path, kShapeKeys);
+  ShapeSpec s;
+  s.name = name;
+  const int which = b.oneOf({"generator", "mesh"}, false, "a shape-library name or a mesh file");
+  if (which == 1) {
+    b.refuse("params", "'params' applies to generators only; a mesh file is used as it is");
+    b.refuse("seed", "'seed' applies to random generators only; a mesh file is used as it is");
+    s.source = ShapeSource::MeshFile;
+    s.meshFile = readMeshPath(b, "mesh");
+    return s;
+  }
+  s.source = ShapeSource::Generator;
+  s.generator = b.text("generator", "a shape-library name");
+  const auto& generators = geometry::shapeGenerators();
+  const auto found = std::find_if(generators.begin(), generators.end(),
+                                  [&](const geometry::ShapeGenerator& g) { return g.name == s.generator; });
+  if (found == generators.end()) {
+    const auto names = generatorNames();
+    b.failValue("generator", fmt::format("unknown generator{}; the shape library has: {}", suggestion(s.generator, names),
+                                         fmt::join(names, ", ")));
+  }
+  if (b.has("params")) {
+    KeyList paramNames;
+    for (const auto& p : found->parameters) paramNames.push_back(p.name);
+    const Block pb(ctx, b.get("params"), b.path("params"), paramNames);
+    for (const auto& p : found->parameters) {
+      if (!pb.has(p.name)) continue;
+      const std::string example = fmt::format("{} (default; {})", p.defaultValue, p.description);
+      s.params[p.name] = pb.number(p.name, {p.unit, Range{p.min, p.max}, example});
+    }
+  }
+  s.seed = b.integer("seed", 0, "std::mt19937_64 seed of a random shape", ctx.seed);
+  if (b.has("seed") && !found->random)
+    b.warnValue("seed", fmt::format("'{}' is not a random shape: the seed has no effect", s.generator));
+  return s;
+}
+
+void readShapes(const Context& ctx, const YAML::Node& node, Scene& scene) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  if (!node.IsMap())
+    fail(ctx, node.Mark(), "shapes", "expected a mapping of shape names to {generator: ..., params: ..., seed: ...} "
+                                     "or {mesh: file.stl}");
+  const auto generators = generatorNames();
+  for (const auto& kv : node) {
+    const std::string name = kv.first.Scalar();
+    const std::string path = child("shapes", name);
+    if (std::find(generators.begin(), generators.end(), name) != generators.end())
+      fail(ctx, kv.first.Mark(), path,
+           fmt::format("'{}' is a shape-library name; give the named shape another name (e.g. {}_custom)", name, name));
+    for (const ShapeSpec& s : scene.shapes)
+      if (s.name == name) fail(ctx, kv.first.Mark(), path, "shape defined twice");
+    scene.shapes.push_back(readShapeBlock(ctx, kv.second, path, name));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// bodies
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kBodyKeys{"name",     "shape",       "volume",   "dn",       "scale",    "material",
+                        "position", "orientation", "velocity", "angular_velocity", "fixed", "grid"};
+const KeyList kGridKeys{"count", "spacing", "rotation_jitter_deg"};
+
+/// The shape of a body: a named shape, a library name, or an inline mapping. Returns its index
+/// in scene.shapes (adding library and inline shapes as needed).
+std::size_t readBodyShape(const Block& b, std::size_t namedShapes, Scene& scene) {
+  const Context& ctx = b.context();
+  if (!b.has("shape"))
+    b.failMissing("shape", "a shape-library name (e.g. cube, dolos, rock), a name from 'shapes', or {mesh: file.stl}");
+  const YAML::Node node = b.get("shape");
+  if (node.IsMap()) {
+    ShapeSpec s = readShapeBlock(ctx, node, b.path("shape"), b.path("shape"));
+    // Bodies that name the same mesh file share one shape (one mesh read, one mass-property pass).
+    if (s.source == ShapeSource::MeshFile) {
+      s.name = "mesh:" + s.meshFile.string();
+      for (std::size_t i = namedShapes; i < scene.shapes.size(); ++i)
+        if (scene.shapes[i].name == s.name) return i;
+    }
+    scene.shapes.push_back(std::move(s));
+    return scene.shapes.size() - 1;
+  }
+  const std::string name = b.text("shape", "a shape name");
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i)
+    if (scene.shapes[i].name == name) return i;
+  const auto generators = generatorNames();
+  if (std::find(generators.begin(), generators.end(), name) != generators.end()) {
+    ShapeSpec s;
+    s.name = name;
+    s.generator = name;
+    s.seed = ctx.seed;
+    scene.shapes.push_back(s);
+    return scene.shapes.size() - 1;
+  }
+  std::vector<std::string_view> all = generators;
+  std::vector<std::string> named;
+  for (std::size_t i = 0; i < namedShapes; ++i) {
+    named.push_back(scene.shapes[i].name);
+    all.push_back(scene.shapes[i].name);
+  }
+  b.failValue("shape", fmt::format("unknown shape{}; the shape library has: {}; named shapes: {}; or give "
+                                   "{{mesh: file.stl}}",
+                                   suggestion(name, all), fmt::join(generators, ", "),
+                                   named.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(named, ", "))));
+}
+
+struct NamedAt {
+  std::string path;
+  YAML::Mark mark;
+};
+
+void readBodies(const Context& ctx, const YAML::Node& node, std::size_t namedShapes, Scene& scene) {
+  if (!node.IsDefined() || node.IsNull())
+    fail(ctx, YAML::Mark::null_mark(), "bodies", "missing: list at least one body, e.g.\nbodies:\n  - shape: cube\n"
+                                                 "    volume: 1\n    material: concrete\n    position: [0, 0, 0.5]");
+  if (!node.IsSequence() || node.size() == 0)
+    fail(ctx, node.Mark(), "bodies", "expected a list of bodies (each item starts with '- ')");
+
+  std::map<std::string, NamedAt> names;
+  const auto addBody = [&](Body body, const std::string& path, const YAML::Mark& mark) {
+    const auto [it, inserted] = names.emplace(body.name, NamedAt{path, mark});
+    if (!inserted)
+      fail(ctx, mark, fmt::format("{}.name = {}", path, body.name),
+           fmt::format("duplicate body name (also {}); body names must be unique", it->second.path));
+    if (scene.bodies.size() >= kMaxBodies)
+      fail(ctx, mark, path, fmt::format("more than {} bodies; check the grid counts", kMaxBodies));
+    scene.bodies.push_back(std::move(body));
+  };
+
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string path = indexed("bodies", i);
+    const Block b(ctx, node[i], path, kBodyKeys);
+    Body body;
+    body.name = b.text("name", "a name", fmt::format("body{}", i));
+    body.shape = readBodyShape(b, namedShapes, scene);
+    body.material = readMaterialRef(b, scene);
+
+    const bool mesh = scene.shapes[body.shape].source == ShapeSource::MeshFile;
+    const Num volume{"m^3", kPositive, "volume: 5 (Dn = V^(1/3) = 1.71 m)"};
+    const Num dn{"m", kPositive, "dn: 1.71 (volume Dn^3 = 5 m^3)"};
+    if (mesh) {
+      const int size = b.oneOf({"volume", "dn", "scale"}, true, "the size of a mesh: rescale it to a volume, or scale it");
+      if (size == 0) body.volume = b.number("volume", volume);
+      if (size == 1) body.volume = std::pow(b.number("dn", dn), 3);
+      body.scale = b.number("scale", {"-", kPositive, "scale: 0.001 for a mesh drawn in mm"}, 1.0);
+    } else {
+      b.refuse("scale", "'scale' applies to mesh files only; size a library shape with 'volume' (m^3) or 'dn' (m)");
+      const int size = b.oneOf({"volume", "dn"}, false, "the unit's size: volume in m^3 or nominal diameter Dn in m");
+      body.volume = size == 0 ? b.number("volume", volume) : std::pow(b.number("dn", dn), 3);
+    }
+
+    body.position = b.vec3("position", {"m", kAnyNumber, "position: [0, 0, 1.5], the centroid [x, y, z]"});
+    body.orientation = readOrientation(b, "orientation");
+    body.velocity = b.vec3("velocity", {"m/s", kAnyNumber, "velocity: [0, 0, -0.5]"}, Vec3::Zero());
+    body.angularVelocity = b.vec3("angular_velocity", {"rad/s", kAnyNumber, "angular_velocity: [0, 0, 1]"}, Vec3::Zero());
+    body.fixed = b.flag("fixed", false);
+    if (body.fixed && (b.has("velocity") || b.has("angular_velocity")))
+      fail(ctx, b.mark(b.has("velocity") ? "velocity" : "angular_velocity"), path,
+           "a fixed body does not move: remove 'velocity' and 'angular_velocity', or set fixed: false");
+
+    if (!b.has("grid")) {
+      addBody(body, path, b.mark());
+      continue;
+    }
+
+    // A grid: the body above at `position` is cell (0, 0, 0); copies step by `spacing` along the
+    // world axes, layer by layer from the bottom (iz outermost, then iy, then ix).
+    const Block g(ctx, b.get("grid"), b.path("grid"), kGridKeys);
+    const auto count = g.integers("count", 3, 1, "bodies along x, y, z");
+    const Vec3 spacing = g.vec3("spacing", {"m", kNonNegative, "spacing: [2.5, 2.5, 2.0] between centroids along x, y, z"});
+    for (int axis = 0; axis < 3; ++axis)
+      if (count[static_cast<std::size_t>(axis)] > 1 && spacing[axis] <= 0.0)
+        g.failValue("spacing", fmt::format("spacing along {} must be > 0 when count along it is {} (unit: m), "
+                                           "or the bodies coincide",
+                                           "xyz"[axis], count[static_cast<std::size_t>(axis)]));
+    // In double: a product of three typos could overflow 64 bits.
+    const double total = static_cast<double>(count[0]) * static_cast<double>(count[1]) * static_cast<double>(count[2]);
+    if (total > static_cast<double>(kMaxBodies))
+      g.failValue("count", fmt::format("{:g} bodies is more than the {} a scene may hold", total, kMaxBodies));
+    const Vec3 jitter = g.vec3("rotation_jitter_deg", {"deg", Range{0.0, 180.0}, "[0, 20, 0]"}, Vec3::Zero());
+    // Each grid draws from its own stream so adding a grid does not change the others.
+    std::mt19937_64 rng(ctx.seed + 0x9E3779B97F4A7C15ULL * (i + 1));
+    const auto symmetric = [&rng](double amplitude) {
+      return amplitude * (2.0 * static_cast<double>(rng() >> 11) * 0x1.0p-53 - 1.0);
+    };
+    const Body base = body;
+    for (std::uint64_t iz = 0; iz < count[2]; ++iz)
+      for (std::uint64_t iy = 0; iy < count[1]; ++iy)
+        for (std::uint64_t ix = 0; ix < count[0]; ++ix) {
+          Body copy = base;
+          copy.name = fmt::format("{}_{}_{}_{}", base.name, ix, iy, iz);
+          copy.position = base.position + Vec3(static_cast<double>(ix) * spacing.x(), static_cast<double>(iy) * spacing.y(),
+                                               static_cast<double>(iz) * spacing.z());
+          if (jitter.any()) {
+            const double dphi = symmetric(jitter.x()) * kDeg;
+            const double dtheta = symmetric(jitter.y()) * kDeg;
+            const double dpsi = symmetric(jitter.z()) * kDeg;
+            copy.orientation = (base.orientation * quaternionFromTaitBryan(dphi, dtheta, dpsi)).normalized();
+          }
+          addBody(copy, path, b.mark());
+        }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// static geometry
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kPlaneKeys{"type", "name", "material", "point", "normal"};
+const KeyList kSlopeKeys{"type",        "name",          "material",      "origin",         "angle_deg", "tan", "cot",
+                         "crest_height", "toe_height", "toe_top_width", "toe_base_width", "roughness"};
+const KeyList kRoughnessKeys{"cell_size", "max_depth", "seed", "y_range"};
+const KeyList kHeightFieldKeys{"type", "name", "material", "origin", "angle_deg", "tan",
+                               "cell_size", "extent", "max_depth", "seed"};
+const KeyList kWallKeys{"type", "name", "material", "axis", "position", "side"};
+const KeyList kStaticMeshKeys{"type", "name", "material", "file", "position", "orientation", "scale"};
+
+/// A gradient from `angle_deg`, `tan` or (slopes only) `cot`. Slopes need exactly one; a height
+/// field's base plane is level unless one is given.
+double readGradient(const Block& b, bool slope) {
+  const KeyList keys = slope ? KeyList{"angle_deg", "tan", "cot"} : KeyList{"angle_deg", "tan"};
+  const int which = b.oneOf(keys, !slope, slope ? "the slope: angle in degrees, tan = rise/run, or cot = run/rise "
+                                                  "(1:2 is cot: 2)"
+                                                : "the rise of the base plane along x: angle in degrees or tan");
+  if (which == 0) return std::tan(b.number("angle_deg", {"deg", Range{0.0, 90.0, slope, true}, "26.57 (1:2)"}) * kDeg);
+  if (which == 1) return b.number("tan", {"-", slope ? kPositive : kNonNegative, "0.5 (1:2)"});
+  if (which == 2) return 1.0 / b.number("cot", {"-", kPositive, "2 (1:2), 1.5 (1:1.5)"});
+  return 0.0;
+}
+
+/// Cells of size `cell` that fit in `length`; warns about a remainder.
+int fitCells(const Block& b, std::string_view key, double length, double cell) {
+  const double ratio = length / cell;
+  // 1e-9 relative keeps 10 / 0.1 = 99.999999999 from losing a cell to round-off.
+  const double n = std::floor(ratio * (1.0 + 1e-9));
+  if (n < 1.0)
+    b.failValue(key, fmt::format("{} m holds no cell of {} m; make it longer or the cells smaller (unit: m)", length, cell));
+  if (n > static_cast<double>(kMaxCells)) b.failValue(key, fmt::format("{} cells is too many (at most {})", n, kMaxCells));
+  if (ratio - n > 1e-6)
+    b.warnValue(key, fmt::format("{} m is not a whole number of {} m cells: the field covers {} m", length, cell, n * cell));
+  return static_cast<int>(n);
+}
+
+void checkCellCount(const Block& b, const HeightField& f) {
+  if (static_cast<std::size_t>(f.cellsX) * static_cast<std::size_t>(f.cellsY) > kMaxCells)
+    fail(b.context(), b.mark(), b.path(),
+         fmt::format("{} x {} cells is more than {}; use larger cells", f.cellsX, f.cellsY, kMaxCells));
+}
+
+StaticSlope readSlope(const Block& b, const Scene& scene) {
+  StaticSlope s;
+  s.material = readMaterialRef(b, scene);
+  const auto origin = b.numbers("origin", 2, {"m", kAnyNumber, "origin: [0, 0], the slope foot (x, z)"}, std::vector<double>{0.0, 0.0});
+  s.origin = Vec2(origin[0], origin[1]);
+  s.tanAlpha = readGradient(b, true);
+  s.crestHeight = b.number("crest_height", {"m", kPositive, "crest_height: 20, above the origin"});
+  s.toeHeight = b.number("toe_height", {"m", kNonNegative, "toe_height: 1.8 (seed 001)"}, 0.0);
+  s.toeTopWidth = b.number("toe_top_width", {"m", kNonNegative, "toe_top_width: 2 (seed 001)"}, 0.0);
+  s.toeBaseWidth = b.number("toe_base_width", {"m", kNonNegative, "toe_base_width: 10 (seed 001)"}, s.toeTopWidth);
+  if (s.toeBaseWidth < s.toeTopWidth)
+    b.failValue("toe_base_width", fmt::format("must be >= toe_top_width = {} m: the toe's foot lies offshore of its "
+                                              "top edge (equal widths give a vertical front face)",
+                                              s.toeTopWidth));
+  if (s.toeHeight == 0.0 && (b.has("toe_top_width") || b.has("toe_base_width")))
+    b.warnValue(b.has("toe_top_width") ? "toe_top_width" : "toe_base_width", "toe_height is 0: there is no toe, the width is unused");
+
+  if (b.has("roughness")) {
+    const Block r(b.context(), b.get("roughness"), b.path("roughness"), kRoughnessKeys);
+    HeightField f;
+    f.cellSize = r.number("cell_size", {"m", kPositive, "cell_size: 1 (seed 001)"}, 1.0);
+    f.maxDepth = r.number("max_depth", {"m", kNonNegative, "max_depth: 0.4, the deepest hollow h"});
+    f.seed = r.integer("seed", 0, "std::mt19937_64 seed of the depths", b.context().seed);
+    const auto y = r.numbers("y_range", 2, {"m", kAnyNumber, "y_range: [-10, 10], the field's extent along y"});
+    if (!(y[1] > y[0])) r.failValue("y_range", "expected [y_min, y_max] with y_max > y_min (unit: m)");
+    const double faceLength = s.crestHeight * std::sqrt(1.0 + s.tanAlpha * s.tanAlpha) / s.tanAlpha;
+    f.origin = Vec3(s.origin.x(), y[0], s.origin.y());
+    f.tanAlpha = s.tanAlpha;
+    f.cellsX = fitCells(r, "cell_size", faceLength, f.cellSize);
+    f.cellsY = fitCells(r, "y_range", y[1] - y[0], f.cellSize);
+    checkCellCount(r, f);
+    generateDepths(f);
+    s.roughness = std::move(f);
+  }
+  return s;
+}
+
+StaticHeightField readHeightField(const Block& b, const Scene& scene) {
+  StaticHeightField h;
+  h.material = readMaterialRef(b, scene);
+  HeightField& f = h.field;
+  f.origin = b.vec3("origin", {"m", kAnyNumber, "origin: [0, -10, 0], the corner of cell (0, 0)"});
+  f.tanAlpha = readGradient(b, false);
+  f.cellSize = b.number("cell_size", {"m", kPositive, "cell_size: 1 (seed 001)"}, 1.0);
+  const auto extent = b.numbers("extent", 2, {"m", kPositive, "extent: [20, 20], along the plane's x and along y"});
+  f.maxDepth = b.number("max_depth", {"m", kNonNegative, "max_depth: 0.4, the deepest hollow h"});
+  f.seed = b.integer("seed", 0, "std::mt19937_64 seed of the depths", b.context().seed);
+  f.cellsX = fitCells(b, "extent", extent[0], f.cellSize);
+  f.cellsY = fitCells(b, "extent", extent[1], f.cellSize);
+  checkCellCount(b, f);
+  generateDepths(f);
+  return h;
+}
+
+void readPlane(const Block& b, const std::string& name, Scene& scene) {
+  StaticPlane p;
+  p.name = name;
+  p.material = readMaterialRef(b, scene);
+  p.point = b.vec3("point", {"m", kAnyNumber, "point: [0, 0, 0]"}, Vec3::Zero());
+  const Vec3 n = b.vec3("normal", {"-", kAnyNumber, "normal: [0, 0, 1], out of the solid"}, Vec3::UnitZ());
+  if (!(n.norm() > 1e-300)) b.failValue("normal", "a zero normal has no direction; e.g. [0, 0, 1] for a floor");
+  p.normal = n.normalized();
+  scene.statics.planes.push_back(p);
+}
+
+void readSlopeItem(const Block& b, const std::string& name, Scene& scene) {
+  StaticSlope s = readSlope(b, scene);
+  s.name = name;
+  scene.statics.slopes.push_back(std::move(s));
+}
+
+void readHeightFieldItem(const Block& b, const std::string& name, Scene& scene) {
+  StaticHeightField h = readHeightField(b, scene);
+  h.name = name;
+  scene.statics.heightFields.push_back(std::move(h));
+}
+
+void readWall(const Block& b, const std::string& name, Scene& scene) {
+  StaticWall w;
+  w.name = name;
+  w.material = readMaterialRef(b, scene);
+  w.axis = static_cast<int>(b.choice("axis", {"x", "y"}));
+  w.position = b.number("position", {"m", kAnyNumber, "position: -10, the wall's coordinate on its axis"});
+  w.atMinimum = b.choice("side", {"min", "max"}) == 0;
+  scene.statics.walls.push_back(w);
+}
+
+void readStaticMesh(const Block& b, const std::string& name, Scene& scene) {
+  StaticMesh m;
+  m.name = name;
+  m.material = readMaterialRef(b, scene);
+  m.file = readMeshPath(b, "file");
+  m.position = b.vec3("position", {"m", kAnyNumber, "position: [0, 0, 0]"}, Vec3::Zero());
+  m.orientation = readOrientation(b, "orientation");
+  m.scale = b.number("scale", {"-", kPositive, "scale: 0.001 for a mesh drawn in mm"}, 1.0);
+  scene.statics.meshes.push_back(m);
+}
+
+/// The static item types: a new type is one row here, its key list above and its reader.
+struct StaticType {
+  std::string_view name;
+  const KeyList* keys;
+  void (*read)(const Block&, const std::string& name, Scene&);
+};
+const std::array<StaticType, 5> kStaticTypeTable{{{"plane", &kPlaneKeys, readPlane},
+                                                  {"slope", &kSlopeKeys, readSlopeItem},
+                                                  {"heightfield", &kHeightFieldKeys, readHeightFieldItem},
+                                                  {"wall", &kWallKeys, readWall},
+                                                  {"mesh", &kStaticMeshKeys, readStaticMesh}}};
+
+void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
+  if (!node.IsDefined() || node.IsNull()) return;
+  KeyList typeNames;
+  for (const StaticType& t : kStaticTypeTable) typeNames.push_back(t.name);
+  if (!node.IsSequence())
+    fail(ctx, node.Mark(), "static", fmt::format("expected a list of static items, each starting with '- type: ' and one "
+                                                 "of {}",
+                                                 fmt::join(typeNames, ", ")));
+  std::map<std::string, NamedAt> names;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string path = indexed("static", i);
+    const YAML::Node item = node[i];
+    if (!item.IsMap() || !item["type"].IsDefined())
+      fail(ctx, item.Mark(), path, fmt::format("missing key 'type': one of {}", fmt::join(typeNames, ", ")));
+    // The type decides which keys are valid, so it is read before the Block checks them.
+    const std::string type = item["type"].IsScalar() ? item["type"].Scalar() : "";
+    const auto found = std::find_if(kStaticTypeTable.begin(), kStaticTypeTable.end(),
+                                    [&](const StaticType& t) { return t.name == type; });
+    if (found == kStaticTypeTable.end())
+      fail(ctx, item["type"].Mark(), fmt::format("{}.type = {}", path, valueText(item["type"])),
+           fmt::format("unknown static type{}; valid types are: {}", suggestion(type, typeNames),
+                       fmt::join(typeNames, ", ")));
+    const Block b(ctx, item, path, *found->keys);
+    const std::string name = b.text("name", "a name", fmt::format("{}{}", type, i));
+    const auto [it, inserted] = names.emplace(name, NamedAt{path, b.mark()});
+    if (!inserted)
+      fail(ctx, b.mark("name"), fmt::format("{}.name = {}", path, name),
+           fmt::format("duplicate static name (also {}); names must be unique", it->second.path));
+    found->read(b, name, scene);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// run settings and the whole file
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kTopKeys{"description", "seed",    "gravity", "duration", "time_step", "time_step_safety", "contact",
+                       "output",      "sleep",   "materials", "shapes", "bodies",    "static"};
+const KeyList kContactKeys{"sample_spacing", "level_set_cells_per_dn", "max_overlap"};
+const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
+                          "contacts"};
+const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time"};
+
+void readRunSettings(const Block& top, Scene& scene) {
+  const Context& ctx = top.context();
+  scene.description = top.text("description", "text", std::string());
+  scene.gravity = top.vec3("gravity", {"m/s^2", kAnyNumber, "gravity: [0, 0, -9.81]"}, scene.gravity);
+  scene.duration = top.number("duration", {"s", kPositive, "duration: 10, simulated seconds"});
+
+  if (top.has("time_step")) {
+    const YAML::Node dt = top.get("time_step");
+    if (dt.IsScalar() && dt.Scalar() == "auto") {
+      scene.timeStep.automatic = true;
+    } else {
+      scene.timeStep.automatic = false;
+      scene.timeStep.value = top.number("time_step", {"s", kPositive, "time_step: 1e-4, or time_step: auto"});
+    }
+  }
+  scene.timeStep.safety = top.number("time_step_safety", {"-", kFraction, "0.2 of the stability limit"}, 0.2);
+  if (!scene.timeStep.automatic && top.has("time_step_safety"))
+    top.warnValue("time_step_safety", "applies to time_step: auto only; the fixed time step is used as given");
+  if (!scene.timeStep.automatic && scene.timeStep.value > scene.duration)
+    top.warnValue("time_step", fmt::format("longer than the duration {} s: the run takes a single step", scene.duration));
+
+  const Block c(ctx, top.has("contact") ? top.get("contact") : YAML::Node(), "contact", kContactKeys);
+  scene.contact.sampleSpacing = c.number("sample_spacing", {"Dn", kFraction, "0.1"}, scene.contact.sampleSpacing);
+  scene.contact.levelSetCellsPerDn =
+      c.number("level_set_cells_per_dn", {"cells per Dn", kPositive, "24"}, scene.contact.levelSetCellsPerDn);
+  scene.contact.maxOverlap = c.number("max_overlap", {"Dn", kFraction, "0.25"}, scene.contact.maxOverlap);
+
+  const Block o(ctx, top.has("output") ? top.get("output") : YAML::Node(), "output", kOutputKeys);
+  const std::string folder = o.text("folder", "a folder path, relative to the scene file's folder", scene.name + "-out");
+  scene.output.folder = std::filesystem::absolute(ctx.baseDir / folder).lexically_normal();
+  scene.output.vtkInterval = o.number("vtk_interval", {"s", kNonNegative, "0.1; 0 = none"}, scene.output.vtkInterval);
+  scene.output.seriesInterval = o.number("series_interval", {"s", kNonNegative, "0.01; 0 = none"}, scene.output.seriesInterval);
+  scene.output.checkpointInterval =
+      o.number("checkpoint_interval", {"s", kNonNegative, "10 simulated seconds; 0 = none"}, scene.output.checkpointInterval);
+  scene.output.checkpointWallMinutes = o.number("checkpoint_wall_minutes", {"min", kNonNegative, "30; 0 = none"},
+                                                scene.output.checkpointWallMinutes);
+  scene.output.contacts = o.flag("contacts", scene.output.contacts);
+
+  const Block s(ctx, top.has("sleep") ? top.get("sleep") : YAML::Node(), "sleep", kSleepKeys);
+  scene.sleep.enabled = s.flag("enabled", scene.sleep.enabled);
+  scene.sleep.linearSpeed = s.number("linear_speed", {"m/s", kNonNegative, "0.001"}, scene.sleep.linearSpeed);
+  scene.sleep.angularSpeed = s.number("angular_speed", {"rad/s", kNonNegative, "0.001"}, scene.sleep.angularSpeed);
+  scene.sleep.time = s.number("time", {"s", kNonNegative, "0.5"}, scene.sleep.time);
+}
+
+} // namespace
+
+Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName) {
+  Scene scene;
+  scene.sourceName = sourceName;
+  scene.name = std::filesystem::path(sourceName).stem().string();
+  scene.baseDir = std::filesystem::absolute(baseDir).lexically_normal();
+  Context ctx{sourceName, scene.baseDir, 1, &scene.warnings};
+
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::ParserException& e) {
+    throw core::InputError(fmt::format("{}:{}:{}: YAML syntax error: {} (check the indentation, colons and brackets "
+                                       "on this line or the one before)",
+                                       sourceName, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  if (!root.IsDefined() || root.IsNull())
+    throw core::InputError(fmt::format("{}: the scene is empty; it needs at least 'materials', 'bodies' and 'duration' "
+                                       "(docs/scene-file.md has an example)",
+                                       sourceName));
+  const Block top(ctx, root, "", kTopKeys);
+  scene.seed = top.integer("seed", 0, "the default seed of random shapes, height fields and grid jitter", 1);
+  ctx.seed = scene.seed;
+
+  readRunSettings(top, scene);
+  readMaterials(ctx, top.get("materials"), scene);
+  readShapes(ctx, top.get("shapes"), scene);
+  const std::size_t namedShapes = scene.shapes.size();
+  readBodies(ctx, top.get("bodies"), namedShapes, scene);
+  readStatic(ctx, top.get("static"), scene);
+
+  const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });
+  if (scene.statics.size() == 0 && !anyFixed && scene.gravity.norm() > 0.0)
+    warn(ctx, YAML::Mark::null_mark(), "static", "no static geometry and no fixed body: every body falls freely");
+  return scene;
+}
+
+Scene readScene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw core::InputError(fmt::format("{}: cannot open the scene file (looked for {})", path.string(),
+                                       std::filesystem::absolute(path).lexically_normal().string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  return parseScene(text.str(), folder, path.string());
+}
+
+} // namespace armour::io

@@ -1,0 +1,443 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "simulation/World.hpp"
+
+#include "core/Error.hpp"
+#include "core/Log.hpp"
+#include "dynamics/Integrator.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace armour::simulation {
+namespace {
+
+constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< second pair index of a body-plane pair
+constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A
+
+bool insideBox(const geometry::Box3& box, const Vec3& p) {
+  return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
+}
+
+/// One engaged sample point before the law is applied.
+struct Engaged {
+  std::uint32_t key;  ///< direction bit | sample index
+  Vec3 point;         ///< world position (m)
+  Vec3 normal;        ///< pushes the probe body (unit)
+  double depth;       ///< m
+  double area;        ///< m^2
+};
+
+using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
+
+const contact::PointHistory* findHistory(const History* h, std::uint32_t key) {
+  if (h == nullptr) {
+    return nullptr;
+  }
+  auto it = std::lower_bound(h->begin(), h->end(), key, [](const auto& e, std::uint32_t k) { return e.first < k; });
+  return it != h->end() && it->first == key ? &it->second : nullptr;
+}
+
+} // namespace
+
+/// What one candidate pair produces in the force stage: written by one thread, read serially.
+struct World::PairWork {
+  contact::BodyPair key;
+  Vec3 forceA = Vec3::Zero(), torqueA = Vec3::Zero();
+  Vec3 forceB = Vec3::Zero(), torqueB = Vec3::Zero();
+  History history;
+  double maxOverlap = 0.0;
+};
+
+World::World(const WorldSettings& settings) : settings_(settings) {}
+World::~World() = default;
+
+MaterialId World::addMaterial(const Material& m) {
+  const std::string where = "material '" + m.name + "'";
+  if (!(m.density > 0.0) || !std::isfinite(m.density)) {
+    core::failInput(where, "density = {} kg/m^3: must be positive (concrete about 2400)", m.density);
+  }
+  if (!(m.frictionStatic >= 0.0) || !(m.frictionDynamic >= 0.0) || m.frictionDynamic > m.frictionStatic + 1e-12) {
+    core::failInput(where, "friction static = {}, dynamic = {}: both must be >= 0 and dynamic <= static",
+                    m.frictionStatic, m.frictionDynamic);
+  }
+  if (!(m.restitution > 0.0 && m.restitution <= 1.0)) {
+    core::failInput(where, "restitution = {}: must be in (0, 1] (concrete on concrete about 0.05)", m.restitution);
+  }
+  if (!(m.penaltyModulus > 0.0) || !std::isfinite(m.penaltyModulus)) {
+    core::failInput(where, "penalty modulus = {} Pa: must be positive (e.g. 1e9)", m.penaltyModulus);
+  }
+  materials_.push_back(m);
+  cachedStep_ = -1.0;
+  return static_cast<MaterialId>(materials_.size() - 1);
+}
+
+ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& mesh) {
+  auto model = std::make_unique<ShapeModel>();
+  model->name = name;
+  const geometry::MassProperties natural = geometry::computeMassProperties(mesh);
+  // Body frame = principal frame with the centroid at the origin: the inertia is diagonal there.
+  const geometry::Mat3 toBody = natural.principalAxes.transpose();
+  model->naturalToBody = Quat(toBody).normalized();
+  model->mesh = mesh;
+  for (auto& v : model->mesh.vertices) {
+    v = toBody * (v - natural.centroid);
+    model->radius = std::max(model->radius, v.norm());
+  }
+  model->unitMass = geometry::computeMassProperties(model->mesh);
+  model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
+  model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
+  core::logger("simulation")
+      ->debug("shape '{}': {} triangles, {} samples, level set {}x{}x{} (h = {:.4g} m)", name,
+              model->mesh.triangleCount(), model->samples->size(), model->levelSet->nodeCounts()[0],
+              model->levelSet->nodeCounts()[1], model->levelSet->nodeCounts()[2], model->levelSet->cellSize());
+  shapes_.push_back(std::move(model));
+  return static_cast<ShapeId>(shapes_.size() - 1);
+}
+
+BodyId World::addBody(const BodySpec& spec) {
+  const std::string where = spec.name.empty() ? fmt::format("body #{}", bodies_.size()) : "body '" + spec.name + "'";
+  if (spec.shape >= shapes_.size()) {
+    core::failInput(where, "shape index {} does not exist ({} shapes)", spec.shape, shapes_.size());
+  }
+  if (spec.material >= materials_.size()) {
+    core::failInput(where, "material index {} does not exist ({} materials)", spec.material, materials_.size());
+  }
+  if (!(spec.scale > 0.0) || !std::isfinite(spec.scale)) {
+    core::failInput(where, "scale = {}: must be positive", spec.scale);
+  }
+  const ShapeModel& shape = *shapes_[spec.shape];
+  const double rho = materials_[spec.material].density;
+  const double s = spec.scale;
+  dynamics::BodyDefinition def;
+  def.name = spec.name;
+  def.motionType = spec.fixed ? dynamics::MotionType::Static : dynamics::MotionType::Dynamic;
+  def.mass = rho * shape.unitMass.volume * s * s * s;
+  def.principalMoments = rho * std::pow(s, 5) * shape.unitMass.principalMoments;
+  def.position = spec.position;
+  def.orientation = (spec.orientation.normalized() * shape.naturalToBody.conjugate()).normalized();
+  if (!spec.fixed) {
+    def.velocity = spec.velocity;
+    def.angularVelocity = spec.angularVelocity;
+  }
+  def.shapeId = static_cast<std::int32_t>(spec.shape);
+  const BodyId id = bodies_.add(def);
+  bodyShape_.push_back(spec.shape);
+  bodyScale_.push_back(s);
+  bodyMaterial_.push_back(spec.material);
+  cachedStep_ = -1.0;
+  forcesReady_ = false;
+  return id;
+}
+
+void World::addPlane(const StaticPlane& plane) {
+  if (!plane.normal.allFinite() || plane.normal.norm() < 1e-12 || !plane.point.allFinite()) {
+    core::failInput("plane '" + plane.name + "'", "normal must be a finite non-zero vector and the point finite");
+  }
+  if (plane.material >= materials_.size()) {
+    core::failInput("plane '" + plane.name + "'", "material index {} does not exist", plane.material);
+  }
+  StaticPlane p = plane;
+  p.normal.normalize();
+  planes_.push_back(p);
+  forcesReady_ = false;
+}
+
+Quat World::naturalOrientation(BodyId b) const { return bodies_.orientation(b) * bodyNaturalToBody(b); }
+
+contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, double lengthScale) const {
+  const Material& ma = materials_[a];
+  const Material& mb = materials_[b];
+  contact::ContactParameters p;
+  p.penaltyModulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
+  p.lengthScale = lengthScale;
+  p.frictionStatic = std::min(ma.frictionStatic, mb.frictionStatic);
+  p.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
+  p.dampingRatio = contact::dampingRatioFromRestitution(std::min(ma.restitution, mb.restitution));
+  p.tangentialStiffnessRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
+  return p;
+}
+
+double World::stableTimeStep() const {
+  double limit = std::numeric_limits<double>::infinity();
+  double maxModulus = 0.0, maxZeta = 0.0;
+  for (const auto& m : materials_) {
+    maxModulus = std::max(maxModulus, m.penaltyModulus);
+    maxZeta = std::max(maxZeta, contact::dampingRatioFromRestitution(m.restitution));
+  }
+  for (BodyId b = 0; b < bodies_.size(); ++b) {
+    if (bodies_.motionType(b) == dynamics::MotionType::Static) {
+      continue;
+    }
+    const ShapeModel& shape = *shapes_[bodyShape_[b]];
+    const double s = bodyScale_[b];
+    const double dn = std::cbrt(shape.unitMass.volume) * s;
+    // Stiffest plausible contact: a third of the surface engaged (a cube resting in a corner
+    // touches with two of its six faces), at the body's own length scale.
+    const double k = maxModulus * (shape.samples->totalArea() * s * s / 3.0) / dn;
+    const double m = bodies_.info(b).mass;
+    const double iMin = bodies_.info(b).principalMoments.minCoeff();
+    const double r = shape.radius * s;
+    const double omega = std::max(std::sqrt(k / m), std::sqrt(k * r * r / iMin));
+    // Central difference with viscous damping: dt < (2 / omega)(sqrt(1 + zeta^2) - zeta).
+    limit = std::min(limit, 2.0 / omega * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta));
+  }
+  return limit;
+}
+
+double World::timeStep() const {
+  if (cachedStep_ > 0.0) {
+    return cachedStep_;
+  }
+  const double limit = stableTimeStep();
+  if (settings_.timeStep > 0.0) {
+    if (settings_.timeStep > limit) {
+      core::failInput("time_step", "{:.4g} s exceeds the stability limit {:.4g} s of the stiffest contact (penalty "
+                                   "modulus, smallest body, restitution); use time_step <= {:.4g} s or auto",
+                      settings_.timeStep, limit, limit);
+    }
+    cachedStep_ = settings_.timeStep;
+  } else {
+    if (!std::isfinite(limit)) {
+      cachedStep_ = 1e-3; // no dynamic body: any step is stable
+    } else {
+      cachedStep_ = settings_.timeStepSafety * limit;
+    }
+  }
+  return cachedStep_;
+}
+
+void World::updateBoxes() {
+  const std::size_t n = bodies_.size();
+  boxes_.resize(n);
+  active_.resize(n);
+  for (BodyId b = 0; b < n; ++b) {
+    const ShapeModel& shape = *shapes_[bodyShape_[b]];
+    const double s = bodyScale_[b];
+    const geometry::Box3 local = shape.levelSet->meshBounds();
+    const geometry::Mat3 R = bodies_.orientation(b).toRotationMatrix();
+    const Vec3 centre = bodies_.position(b) + R * (s * local.centre());
+    const Vec3 half = R.cwiseAbs() * (0.5 * s * local.size()) +
+                      Vec3::Constant(settings_.boxMarginPerDn * std::cbrt(shape.unitMass.volume) * s);
+    boxes_[b].min = centre - half;
+    boxes_[b].max = centre + half;
+    active_[b] = bodies_.isAwake(b) ? 1 : 0;
+  }
+}
+
+void World::computeForces(double dt) {
+  bodies_.clearForces();
+  updateBoxes();
+  broadPhase_.findPairs(boxes_, active_, pairs_);
+  const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
+  // Work list: body pairs from the broad phase, then body-plane pairs (awake bodies whose box
+  // reaches below the plane).
+  std::vector<PairWork> work;
+  work.reserve(pairs_.size() + nBodies);
+  for (const auto& p : pairs_) {
+    PairWork pw;
+    pw.key = p;
+    work.push_back(std::move(pw));
+  }
+  for (BodyId b = 0; b < nBodies; ++b) {
+    if (!active_[b]) {
+      continue;
+    }
+    for (std::uint32_t k = 0; k < planes_.size(); ++k) {
+      const auto& pl = planes_[k];
+      // Lowest corner of the box along the normal.
+      const Vec3 lowest(pl.normal.x() >= 0 ? boxes_[b].min.x() : boxes_[b].max.x(),
+                        pl.normal.y() >= 0 ? boxes_[b].min.y() : boxes_[b].max.y(),
+                        pl.normal.z() >= 0 ? boxes_[b].min.z() : boxes_[b].max.z());
+      if ((lowest - pl.point).dot(pl.normal) < 0.0) {
+        PairWork pw;
+        pw.key = {b, kPlaneBit | k};
+        work.push_back(std::move(pw));
+      }
+    }
+  }
+
+  // A parallel region costs microseconds: not worth it for a handful of pairs.
+#pragma omp parallel for schedule(dynamic, 4) if (work.size() > 8)
+  for (std::size_t w = 0; w < work.size(); ++w) {
+    PairWork& pw = work[w];
+    const BodyId a = pw.key.first;
+    const bool plane = (pw.key.second & kPlaneBit) != 0;
+    const auto histIt = history_.find(pw.key);
+    const History* previous = histIt == history_.end() ? nullptr : &histIt->second;
+    std::vector<Engaged> engaged;
+    const ShapeModel& shapeA = *shapes_[bodyShape_[a]];
+    const double sA = bodyScale_[a];
+    const Quat& qA = bodies_.orientation(a);
+    const Vec3& xA = bodies_.position(a);
+    const auto& samplesA = *shapeA.samples;
+    double lengthScale = std::cbrt(shapeA.unitMass.volume) * sA;
+    contact::ContactParameters params;
+    double inverseMassSum = bodies_.inverseMass(a);
+    if (plane) {
+      const StaticPlane& pl = planes_[pw.key.second & ~kPlaneBit];
+      for (std::uint32_t i = 0; i < samplesA.size(); ++i) {
+        const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
+        const double phi = (X - pl.point).dot(pl.normal);
+        if (phi < 0.0) {
+          engaged.push_back({i, X, pl.normal, -phi, sA * sA * samplesA.areas()[i]});
+        }
+      }
+      params = pairParameters(bodyMaterial_[a], pl.material, lengthScale);
+    } else {
+      const BodyId b = pw.key.second;
+      const ShapeModel& shapeB = *shapes_[bodyShape_[b]];
+      const double sB = bodyScale_[b];
+      lengthScale = std::min(lengthScale, std::cbrt(shapeB.unitMass.volume) * sB);
+      inverseMassSum += bodies_.inverseMass(b);
+      // Both directions, each with half the penalty: symmetric in A and B, and both bodies'
+      // edges and corners are detected.
+      for (int dir = 0; dir < 2; ++dir) {
+        const BodyId probe = dir == 0 ? a : b;
+        const BodyId target = dir == 0 ? b : a;
+        const ShapeModel& ps = dir == 0 ? shapeA : shapeB;
+        const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
+        const double sp = dir == 0 ? sA : sB;
+        const double st = dir == 0 ? sB : sA;
+        const Quat& qp = bodies_.orientation(probe);
+        const Vec3& xp = bodies_.position(probe);
+        const Quat qtInv = bodies_.orientation(target).conjugate();
+        const Quat& qt = bodies_.orientation(target);
+        const Vec3& xt = bodies_.position(target);
+        const auto& box = boxes_[target];
+        const auto& samples = *ps.samples;
+        for (std::uint32_t i = 0; i < samples.size(); ++i) {
+          const Vec3 X = xp + qp * (sp * samples.positions()[i]);
+          if (!insideBox(box, X)) {
+            continue;
+          }
+          const contact::LevelSetQuery q = ts.levelSet->query(qtInv * (X - xt), st);
+          if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
+            const Vec3 n = qt * q.normal;
+            engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi,
+                               sp * sp * samples.areas()[i]});
+          }
+        }
+      }
+      params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
+      params.penaltyModulus *= 0.5;
+    }
+    if (engaged.empty()) {
+      continue;
+    }
+    double pairStiffness = 0.0;
+    for (const auto& e : engaged) {
+      pairStiffness += contact::pointStiffness(params, e.area);
+      pw.maxOverlap = std::max(pw.maxOverlap, e.depth);
+    }
+    const double effectiveMass = inverseMassSum > 0.0 ? 1.0 / inverseMassSum : 0.0;
+    const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
+    const BodyId b = plane ? a : pw.key.second;
+    const Vec3& xB = bodies_.position(b);
+    pw.history.reserve(engaged.size());
+    for (const auto& e : engaged) {
+      // For B's samples (reverse bit) the normal was flipped to push A: the law always sees A
+      // as the pushed body, so history and forces stay in one convention.
+      Vec3 vRel = bodies_.velocityAtPoint(a, e.point);
+      if (!plane) {
+        vRel -= bodies_.velocityAtPoint(b, e.point);
+      }
+      const contact::PointHistory* prev = findHistory(previous, e.key);
+      const contact::PointForce f = contact::evaluatePointContact(params, {e.normal, e.depth, e.area, vRel},
+                                                                  prev ? *prev : contact::PointHistory{}, beta, dt);
+      pw.forceA += f.force;
+      pw.torqueA += (e.point - xA).cross(f.force);
+      if (!plane) {
+        pw.forceB -= f.force;
+        pw.torqueB -= (e.point - xB).cross(f.force);
+      }
+      pw.history.emplace_back(e.key, f.history);
+    }
+    std::sort(pw.history.begin(), pw.history.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  }
+
+  // Serial, ordered accumulation: bit-identical for any thread count.
+  stats_ = {};
+  stats_.candidatePairs = work.size();
+  std::map<contact::BodyPair, History> nextHistory;
+  for (auto& pw : work) {
+    if (pw.history.empty()) {
+      continue;
+    }
+    const BodyId a = pw.key.first;
+    auto forces = bodies_.forces();
+    auto torques = bodies_.torques();
+    forces[a] += pw.forceA;
+    torques[a] += pw.torqueA;
+    if ((pw.key.second & kPlaneBit) == 0) {
+      forces[pw.key.second] += pw.forceB;
+      torques[pw.key.second] += pw.torqueB;
+    }
+    stats_.contactPoints += pw.history.size();
+    stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
+    // Guard rail: an overlap this deep means the contact cannot hold (time step, stiffness or
+    // tunnelling), and the forces that follow are meaningless.
+    const double dnA = std::cbrt(shapes_[bodyShape_[a]]->unitMass.volume) * bodyScale_[a];
+    double dn = dnA;
+    std::string other;
+    if ((pw.key.second & kPlaneBit) == 0) {
+      const BodyId b = pw.key.second;
+      dn = std::min(dn, std::cbrt(shapes_[bodyShape_[b]]->unitMass.volume) * bodyScale_[b]);
+      other = bodies_.describe(b);
+    } else {
+      other = "plane '" + planes_[pw.key.second & ~kPlaneBit].name + "'";
+    }
+    if (pw.maxOverlap > settings_.maxOverlapPerDn * dn) {
+      throw SimulationError(fmt::format(
+          "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x Dn = {:.4g} m; the contact cannot hold: "
+          "lower the time step, raise the penalty modulus, or check the initial positions",
+          time_, bodies_.describe(a), other, pw.maxOverlap, settings_.maxOverlapPerDn,
+          settings_.maxOverlapPerDn * dn));
+    }
+    nextHistory.emplace(pw.key, std::move(pw.history));
+  }
+  history_ = std::move(nextHistory);
+}
+
+void World::step() {
+  const double dt = timeStep();
+  if (!forcesReady_) {
+    computeForces(dt);
+    forcesReady_ = true;
+  }
+  dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
+  dynamics::drift(bodies_, dt);
+  computeForces(dt);
+  dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
+  time_ += dt;
+  ++steps_;
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (!bodies_.position(b).allFinite() || !bodies_.velocity(b).allFinite() ||
+        !bodies_.worldAngularVelocity(b).allFinite()) {
+      throw SimulationError(fmt::format("t = {:.6g} s: {} has a non-finite state (position, velocity or "
+                                        "angular velocity); the step is unstable: lower the time step",
+                                        time_, bodies_.describe(b)));
+    }
+  }
+}
+
+void World::advanceTo(double t) {
+  while (time_ < t - 0.5 * timeStep()) {
+    step();
+  }
+}
+
+double World::mechanicalEnergy() const {
+  double e = 0.0;
+  for (BodyId b = 0; b < bodies_.size(); ++b) {
+    if (bodies_.motionType(b) == dynamics::MotionType::Static) {
+      continue;
+    }
+    e += bodies_.kineticEnergy(b) - bodies_.info(b).mass * settings_.gravity.dot(bodies_.position(b));
+  }
+  return e;
+}
+
+} // namespace armour::simulation

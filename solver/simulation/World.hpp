@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file World.hpp
+/// The rigid FDEM world: shapes (each with its level set and surface samples, shared by all
+/// bodies of the shape), materials, bodies, static planes, and the time step as a list of named
+/// stages (docs/architecture.md, "The time step"):
+///
+///   kick(dt/2) -> drift(dt) -> boxes -> broad phase -> narrow phase -> contact law
+///     -> accumulate -> kick(dt/2)
+///
+/// Determinism: the narrow phase and the contact law run in parallel over candidate pairs, each
+/// pair writing only its own result slot; forces are then summed into bodies serially in pair
+/// order, so 1 and N threads give bit-identical states.
+
+#include "contact/BroadPhase.hpp"
+#include "contact/ContactLaw.hpp"
+#include "contact/LevelSet.hpp"
+#include "contact/SurfaceSamples.hpp"
+#include "dynamics/RigidBodies.hpp"
+#include "geometry/MassProperties.hpp"
+#include "geometry/TriangleMesh.hpp"
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace armour::simulation {
+
+using dynamics::BodyId;
+using dynamics::Quat;
+using dynamics::Vec3;
+
+using ShapeId = std::uint32_t;
+using MaterialId = std::uint32_t;
+
+/// Contact material. Pairs combine by the smaller friction, the smaller restitution and the
+/// smaller penalty modulus (the softer body sets the stiffness).
+struct Material {
+  std::string name;
+  double density = 2400.0;             ///< unit: kg/m^3
+  double frictionStatic = 0.75;        ///< Coulomb coefficient while sticking (unit: -)
+  double frictionDynamic = 0.75;       ///< Coulomb coefficient while sliding (unit: -)
+  double restitution = 0.05;           ///< normal coefficient of restitution (unit: -)
+  double penaltyModulus = 1.0e9;       ///< contact pressure per unit relative depth (unit: Pa)
+  double tangentialStiffnessRatio = 1.0; ///< k_t / k_n (unit: -)
+};
+
+/// Settings of the whole simulation.
+struct WorldSettings {
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
+  double timeStep = 0.0;                  ///< unit: s; 0 = automatic (safety x stability limit)
+  double timeStepSafety = 0.2;            ///< fraction of the stability limit used by "auto" (unit: -)
+  contact::LevelSetSettings levelSet;     ///< grid resolution per shape
+  contact::SurfaceSampleSettings samples; ///< surface sample spacing per shape
+  double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
+  double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
+};
+
+/// A shape prepared for simulation: moved to its principal frame, with its contact geometry.
+struct ShapeModel {
+  std::string name;
+  geometry::TriangleMesh mesh;          ///< body (principal) frame, centroid at the origin (m)
+  geometry::MassProperties unitMass;    ///< per unit density, body frame
+  Quat naturalToBody = Quat::Identity(); ///< rotation from the shape's natural frame to its principal frame
+  std::unique_ptr<contact::LevelSet> levelSet;
+  std::unique_ptr<contact::SurfaceSamples> samples;
+  double radius = 0.0;                  ///< largest vertex distance from the centroid (m)
+};
+
+/// How to create a body.
+struct BodySpec {
+  std::string name;
+  ShapeId shape = 0;
+  double scale = 1.0;                   ///< uniform scale of the shape (unit: -)
+  MaterialId material = 0;
+  bool fixed = false;                   ///< static: never moves
+  Vec3 position = Vec3::Zero();         ///< centroid, world (unit: m)
+  Quat orientation = Quat::Identity();  ///< natural shape frame -> world (unit: -)
+  Vec3 velocity = Vec3::Zero();         ///< unit: m/s
+  Vec3 angularVelocity = Vec3::Zero();  ///< world (unit: rad/s)
+};
+
+/// A static half-space {x : (x - point) . normal <= 0} (the solid side is below the plane).
+struct StaticPlane {
+  std::string name;
+  Vec3 point = Vec3::Zero();   ///< a point on the plane (unit: m)
+  Vec3 normal = Vec3::UnitZ(); ///< unit normal out of the solid (unit: -)
+  MaterialId material = 0;
+};
+
+/// Why a run had to stop.
+class SimulationError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Counters of the last step, for logs and benchmarks.
+struct StepStatistics {
+  std::size_t candidatePairs = 0;   ///< broad-phase pairs (bodies and planes)
+  std::size_t contactPoints = 0;    ///< engaged sample points
+  double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
+};
+
+class World {
+public:
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  MaterialId addMaterial(const Material& material);
+  /// Add a shape from a closed mesh in its natural frame (validated by the caller). Builds the
+  /// level set and the samples once; every body of the shape shares them.
+  ShapeId addShape(const std::string& name, const geometry::TriangleMesh& mesh);
+  BodyId addBody(const BodySpec& spec);
+  void addPlane(const StaticPlane& plane);
+
+  /// Stability limit of the explicit step from the stiffest plausible contact of each dynamic body
+  /// (translation and rotation, including damping): docs/theory.md (unit: s).
+  [[nodiscard]] double stableTimeStep() const;
+  /// The step in use: the user's (checked against the limit) or safety x limit.
+  /// Throws core::InputError if the user's step exceeds the limit, giving the limit.
+  [[nodiscard]] double timeStep() const;
+
+  /// Advance one step. Throws SimulationError (bodies named) on a non-finite state or an overlap
+  /// deeper than maxOverlapPerDn x Dn.
+  void step();
+  /// Advance until time() >= t.
+  void advanceTo(double t);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::uint64_t stepCount() const { return steps_; }
+  [[nodiscard]] const dynamics::RigidBodies& bodies() const { return bodies_; }
+  [[nodiscard]] dynamics::RigidBodies& bodies() { return bodies_; }
+  [[nodiscard]] const ShapeModel& shape(ShapeId id) const { return *shapes_[id]; }
+  [[nodiscard]] ShapeId bodyShape(BodyId b) const { return bodyShape_[b]; }
+  [[nodiscard]] double bodyScale(BodyId b) const { return bodyScale_[b]; }
+  [[nodiscard]] const Quat& bodyNaturalToBody(BodyId b) const { return shapes_[bodyShape_[b]]->naturalToBody; }
+  [[nodiscard]] const StepStatistics& lastStep() const { return stats_; }
+  [[nodiscard]] const WorldSettings& settings() const { return settings_; }
+  /// Orientation of the body's natural shape frame in the world (what the user gave).
+  [[nodiscard]] Quat naturalOrientation(BodyId b) const;
+  /// Total mechanical energy: kinetic + gravitational potential (J), contact energy excluded.
+  [[nodiscard]] double mechanicalEnergy() const;
+
+private:
+  struct PairWork;
+  void computeForces(double dt);
+  void updateBoxes();
+  contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
+
+  WorldSettings settings_;
+  dynamics::RigidBodies bodies_;
+  std::vector<std::unique_ptr<ShapeModel>> shapes_;
+  std::vector<Material> materials_;
+  std::vector<StaticPlane> planes_;
+  // Per-body cold-ish data used by the contact stages.
+  std::vector<ShapeId> bodyShape_;
+  std::vector<double> bodyScale_;
+  std::vector<MaterialId> bodyMaterial_;
+  std::vector<geometry::Box3> boxes_;
+  std::vector<std::uint8_t> active_;
+  contact::BroadPhase broadPhase_;
+  std::vector<contact::BodyPair> pairs_;
+  /// Friction history per body pair (or body-plane pair: second = bodies + plane index), per
+  /// sample key (direction bit | sample index), sorted by key.
+  std::map<contact::BodyPair, std::vector<std::pair<std::uint32_t, contact::PointHistory>>> history_;
+  mutable double cachedStep_ = -1.0;
+  double time_ = 0.0;
+  std::uint64_t steps_ = 0;
+  bool forcesReady_ = false;
+  StepStatistics stats_;
+};
+
+} // namespace armour::simulation

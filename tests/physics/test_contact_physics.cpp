@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Rigid bodies with level-set penalty contact against analytic results: rebound with the target
+// restitution, energy conservation of elastic bounces, static friction on an incline below the
+// friction angle (no creep) and the sliding acceleration above it.
+
+#include "core/Error.hpp"
+#include "geometry/ShapeLibrary.hpp"
+#include "simulation/World.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace armour;
+using namespace armour::simulation;
+
+namespace {
+
+/// A world with one material, one shape (a cube of side 1 m unless told) and helpers.
+struct CubeScene {
+  World world;
+  MaterialId material = 0;
+  ShapeId cube = 0;
+
+  explicit CubeScene(const Material& m = {}, WorldSettings settings = {}) : world(settings) {
+    material = world.addMaterial(m);
+    geometry::ShapeRequest r;
+    r.volume = 1.0;
+    cube = world.addShape("cube", geometry::makeShape("cube", r));
+  }
+  BodyId addCube(const Vec3& position, const Quat& orientation = Quat::Identity(), const Vec3& velocity = Vec3::Zero()) {
+    BodySpec b;
+    b.shape = cube;
+    b.material = material;
+    b.position = position;
+    b.orientation = orientation;
+    b.velocity = velocity;
+    return world.addBody(b);
+  }
+  void addFloor(const Vec3& normal = Vec3::UnitZ()) { world.addPlane({"floor", Vec3::Zero(), normal, material}); }
+};
+
+Material concrete(double restitution, double mu) {
+  Material m;
+  m.name = "concrete";
+  m.restitution = restitution;
+  m.frictionStatic = m.frictionDynamic = mu;
+  return m;
+}
+
+/// Drop a cube flat from `gap` above the floor; return (impact speed, rebound speed) of the first
+/// bounce. The rebound speed is the largest upward speed within 50 ms of the first contact: it is
+/// reached when the cube leaves the floor (contact lasts about 5 ms here).
+std::pair<double, double> firstBounce(double restitution, double gap) {
+  CubeScene s(concrete(restitution, 0.5));
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5 + gap));
+  double impact = 0.0, rebound = 0.0, tContact = -1.0;
+  while (s.world.time() < 2.0) {
+    const double vz = s.world.bodies().velocity(b).z();
+    s.world.step();
+    if (tContact < 0.0 && s.world.lastStep().contactPoints > 0) {
+      tContact = s.world.time();
+      impact = -vz;
+    }
+    if (tContact >= 0.0) {
+      rebound = std::max(rebound, s.world.bodies().velocity(b).z());
+      if (s.world.time() > tContact + 0.05) {
+        break;
+      }
+    }
+  }
+  return {impact, rebound};
+}
+
+} // namespace
+
+TEST(ContactPhysics, DropReboundsWithTheTargetRestitution) {
+  // Flat landing from 0.5 m (3.1 m/s): every bottom sample engages at once and the patch behaves
+  // as one linear spring-dashpot, so the rebound ratio should be e. The issue allows 0.03: gravity
+  // acts during the ~5 ms of contact (g T / v = 0.016) and the step smears entry and exit.
+  for (double e : {0.05, 0.3, 0.6, 0.9}) {
+    const auto [vin, vout] = firstBounce(e, 0.5);
+    ASSERT_GT(vin, 3.0);
+    RecordProperty("rebound_ratio_e" + std::to_string(static_cast<int>(100 * e)), std::to_string(vout / vin));
+    EXPECT_NEAR(vout / vin, e, 0.03) << "e = " << e << ", impact " << vin << " m/s, rebound " << vout << " m/s";
+  }
+}
+
+TEST(ContactPhysics, ElasticBouncesConserveEnergy) {
+  // e = 1 and no friction: nothing dissipates; the penalty spring stores and returns the energy.
+  // (With friction a repeatedly bouncing cube starts to rock: the flat bounce is parametrically
+  // unstable, a tilt of 1e-17 rad grows about 17-fold per bounce, and the rocking edges then
+  // slide and dissipate, as a real block would.) Over 100 bounces the
+  // mechanical energy must drift by less than 1 % (issue). Each entry into and exit from contact
+  // in mid-step costs O((omega dt)^2) of the bounce energy; at half the default safety factor
+  // (omega dt = 0.07 for the face contact) that is below 1e-5 per bounce.
+  WorldSettings settings;
+  settings.timeStepSafety = 0.1;
+  CubeScene s(concrete(1.0, 0.0), settings);
+  s.addFloor();
+  s.addCube(Vec3(0, 0, 0.5 + 0.02));
+  const double bounceEnergy = 2400.0 * 9.81 * 0.02;
+  const double e0 = s.world.mechanicalEnergy();
+  int bounces = 0;
+  bool inContact = false;
+  while (bounces < 100 && s.world.time() < 60.0) {
+    s.world.step();
+    const bool now = s.world.lastStep().contactPoints > 0;
+    if (inContact && !now) {
+      ++bounces;
+      EXPECT_NEAR(s.world.mechanicalEnergy(), e0, 0.01 * bounceEnergy) << "after bounce " << bounces;
+    }
+    inContact = now;
+  }
+  EXPECT_EQ(bounces, 100);
+}
+
+namespace {
+
+/// A cube resting on a slope of angle theta (rad); returns the world and the body.
+struct SlopeScene : CubeScene {
+  BodyId block = 0;
+  Vec3 normal, downhill;
+  SlopeScene(double theta, double mu) : CubeScene(concrete(0.3, mu)) {
+    normal = Vec3(std::sin(theta), 0, std::cos(theta)); // slope descends towards +x
+    downhill = Vec3(std::cos(theta), 0, -std::sin(theta));
+    addFloor(normal);
+    const Quat tilt(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+    block = addCube(0.5 * normal, tilt);
+  }
+  double along() const { return world.bodies().position(block).dot(downhill); }
+};
+
+} // namespace
+
+TEST(ContactPhysics, BlockOnInclineBelowFrictionAngleDoesNotCreep) {
+  // tan(25 deg) = 0.466 < mu = 0.75: static friction holds the block. After it settles onto its
+  // springs (1 s) it must not move more than 1e-4 m in 20 s (issue): the tangential springs hold
+  // a constant stretch, there is no viscous creep.
+  SlopeScene s(25.0 * std::numbers::pi / 180.0, 0.75);
+  s.world.advanceTo(1.0);
+  const double x0 = s.along();
+  s.world.advanceTo(21.0);
+  RecordProperty("drift_m", std::to_string(std::abs(s.along() - x0)));
+  EXPECT_LT(std::abs(s.along() - x0), 1e-4);
+  EXPECT_LT(std::abs(s.along()), 1e-3) << "elastic stretch only";
+}
+
+TEST(ContactPhysics, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAcceleration) {
+  // theta = 35 deg, mu = 0.4: a = g (sin theta - mu cos theta) = 2.413 m/s^2; the issue asks for
+  // 1 %. Measured from the velocity gain between 0.5 s and 1.5 s (after the contact has settled).
+  const double theta = 35.0 * std::numbers::pi / 180.0;
+  SlopeScene s(theta, 0.4);
+  s.world.advanceTo(0.5);
+  const double v0 = s.world.bodies().velocity(s.block).dot(s.downhill);
+  s.world.advanceTo(1.5);
+  const double v1 = s.world.bodies().velocity(s.block).dot(s.downhill);
+  const double expected = 9.81 * (std::sin(theta) - 0.4 * std::cos(theta));
+  RecordProperty("acceleration_relative_error", std::to_string((v1 - v0) / expected - 1.0));
+  EXPECT_NEAR((v1 - v0) / 1.0, expected, 0.01 * expected);
+}
+
+TEST(ContactPhysics, UserTimeStepAboveTheLimitIsRefused) {
+  WorldSettings settings;
+  settings.timeStep = 0.1;
+  CubeScene s(concrete(0.3, 0.5), settings);
+  s.addFloor();
+  s.addCube(Vec3(0, 0, 1));
+  try {
+    s.world.step();
+    ADD_FAILURE() << "a 0.1 s step must be refused";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("exceeds the stability limit"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The point contact law: damping from restitution, no attraction, true static friction and the
+// Coulomb cap while sliding.
+
+#include "contact/ContactLaw.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace armour::contact;
+
+TEST(ContactLaw, DampingRatioInvertsTheClampedRestitution) {
+  for (double e : {0.01, 0.05, 0.3, 0.5, 0.9, 0.999}) {
+    EXPECT_NEAR(restitutionOfClampedDashpot(dampingRatioFromRestitution(e)), e, 1e-12) << e;
+  }
+  EXPECT_EQ(dampingRatioFromRestitution(1.0), 0.0);
+  // Light damping: the clamp hardly matters and e -> exp(-zeta pi / sqrt(1 - zeta^2)).
+  EXPECT_NEAR(restitutionOfClampedDashpot(0.01), std::exp(-0.01 * std::numbers::pi / std::sqrt(1 - 1e-4)), 2e-4);
+}
+
+TEST(ContactLaw, OneDimensionalImpactReboundsWithTheTargetRestitution) {
+  // A 1 kg point mass hits a rigid wall at 1 m/s on one contact point. The damping ratio accounts
+  // for the clamp (no attraction), so the rebound equals e up to the time discretisation: 2e-3
+  // with 6000 steps per contact period.
+  for (double e : {0.01, 0.05, 0.3, 0.5, 0.8, 1.0}) {
+    ContactParameters p;
+    p.penaltyModulus = 1e6;
+    p.lengthScale = 1.0;
+    p.dampingRatio = dampingRatioFromRestitution(e);
+    const double area = 1e-2; // k = 1e4 N/m, period 2 pi sqrt(m/k) = 0.063 s
+    const double k = pointStiffness(p, area);
+    const double m = 1.0;
+    const double beta = dampingTime(p, m, k);
+    const double dt = 1e-5;
+    double x = 0.0, v = -1.0; // x < 0: penetration
+    PointHistory h;
+    do {
+      PointContact c{Vec3::UnitZ(), -x, area, Vec3(0, 0, v)};
+      const PointForce f = evaluatePointContact(p, c, h, beta, dt);
+      EXPECT_GE(f.normalForce, 0.0);
+      v += f.force.z() / m * dt;
+      x += v * dt;
+    } while (x < 0.0);
+    EXPECT_NEAR(v, e, 2e-3) << "e = " << e;
+  }
+}
+
+TEST(ContactLaw, StaticFrictionHoldsBelowTheLimitWithoutCreep) {
+  // A point pressed with Fn = 1000 N and pulled sideways with 0.4 Fn < mu_s Fn: after the spring
+  // has taken up the load the point must stop; we integrate a 10 kg mass on that point for 20 s.
+  ContactParameters p;
+  p.penaltyModulus = 1e8;
+  p.frictionStatic = p.frictionDynamic = 0.75;
+  p.dampingRatio = 0.5;
+  const double area = 1e-2;
+  const double k = pointStiffness(p, area);
+  const double depth = 1000.0 / k;
+  const double m = 10.0;
+  const double beta = dampingTime(p, m, k);
+  const double dt = 1e-4;
+  const double pull = 0.4 * 1000.0; // the damped transient overshoots the load by < 1.9x: stays below mu_s Fn
+  double x = 0.0, v = 0.0;
+  PointHistory h;
+  double xAfterSettling = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const PointForce f = evaluatePointContact(p, {Vec3::UnitZ(), depth, area, Vec3(v, 0, 0)}, h, beta, dt);
+    h = f.history;
+    v += (pull + f.force.x()) / m * dt;
+    x += v * dt;
+    if (i == 10000) {
+      xAfterSettling = x; // 1 s: many damped periods of the tangential spring
+    }
+  }
+  EXPECT_FALSE(h.sliding);
+  // Elastic stretch pull / k_t, then nothing: the drift after settling is round-off.
+  EXPECT_NEAR(xAfterSettling, pull / k, 1e-3 * pull / k);
+  EXPECT_NEAR(x, xAfterSettling, 1e-12);
+}
+
+TEST(ContactLaw, SlidingForceIsTheDynamicCoulombForce) {
+  ContactParameters p;
+  p.penaltyModulus = 1e8;
+  p.frictionStatic = 0.8;
+  p.frictionDynamic = 0.5;
+  const double area = 1e-2;
+  const double k = pointStiffness(p, area);
+  const double depth = 1000.0 / k; // Fn = 1000 N
+  PointHistory h;
+  // Slide at a constant 0.2 m/s: first the spring loads until mu_s Fn is exceeded, then the force
+  // is mu_d Fn against the motion.
+  for (int i = 0; i < 1000; ++i) {
+    const PointForce f = evaluatePointContact(p, {Vec3::UnitZ(), depth, area, Vec3(0.2, 0, 0)}, h, 0.0, 1e-4);
+    h = f.history;
+    if (i == 999) {
+      EXPECT_TRUE(h.sliding);
+      EXPECT_NEAR(f.force.x(), -0.5 * 1000.0, 1e-9);
+      EXPECT_NEAR(f.force.z(), 1000.0, 1e-9);
+    }
+  }
+}
+
+TEST(ContactLaw, NoAttractionWhenSeparatingFast) {
+  ContactParameters p;
+  p.dampingRatio = 0.9;
+  const PointForce f = evaluatePointContact(p, {Vec3::UnitZ(), 1e-6, 1.0, Vec3(0, 0, 100.0)}, {}, 0.1, 1e-4);
+  EXPECT_EQ(f.normalForce, 0.0);
+  EXPECT_EQ(f.force.norm(), 0.0);
+}
+
+TEST(ContactLaw, StretchIsCarriedIntoTheNewTangentPlane) {
+  // The contact normal tilts by 30 degrees: the stored stretch is projected and rescaled, so the
+  // spring force keeps its magnitude and lies in the new tangent plane.
+  ContactParameters p;
+  p.penaltyModulus = 1e8;
+  PointHistory h;
+  h.stretch = Vec3(1e-5, 0, 0);
+  const Vec3 n(std::sin(0.5236), 0, std::cos(0.5236));
+  const PointForce f = evaluatePointContact(p, {n, 1e-3, 1e-2, Vec3::Zero()}, h, 0.0, 1e-4);
+  EXPECT_NEAR(f.history.stretch.norm(), 1e-5, 1e-18);
+  EXPECT_NEAR(f.history.stretch.dot(n), 0.0, 1e-18);
+}
