@@ -160,8 +160,10 @@ public:
       : ctx_(ctx), node_(node), path_(std::move(path)), keys_(keys) {
     if (node_.IsNull()) return; // "contact:" with nothing under it: all defaults
     if (!node_.IsMap())
-      fail(ctx_, node_.Mark(), fmt::format("{} = {}", path_, valueText(node_)),
-           fmt::format("expected a mapping of key: value; valid keys are: {}", fmt::join(keys_, ", ")));
+      fail(ctx_, node_.Mark(), path_.empty() ? "" : fmt::format("{} = {}", path_, valueText(node_)),
+           fmt::format("expected a mapping of key: value{}; valid keys are: {}",
+                       path_.empty() ? fmt::format(" at the top of the file, found '{}'", valueText(node_)) : "",
+                       fmt::join(keys_, ", ")));
     std::set<std::string> seen;
     for (const auto& kv : node_) {
       const std::string key = kv.first.Scalar();

@@ -40,6 +40,63 @@ const contact::PointHistory* findHistory(const History* h, std::uint32_t key) {
   return it != h->end() && it->first == key ? &it->second : nullptr;
 }
 
+constexpr int kBuckets = SampleBuckets::kCells;
+
+std::array<int, 3> bucketOf(const SampleBuckets& b, const Vec3& p) {
+  std::array<int, 3> c{};
+  for (int k = 0; k < 3; ++k) {
+    c[k] = std::clamp(static_cast<int>(std::floor((p[k] - b.origin[k]) / b.cell[k])), 0, kBuckets - 1);
+  }
+  return c;
+}
+
+/// Counting sort of the samples into buckets.
+void buildBuckets(ShapeModel& shape) {
+  SampleBuckets& b = shape.buckets;
+  const geometry::Box3 box = shape.mesh.bounds();
+  b.origin = box.min;
+  b.cell = (box.size() / kBuckets).cwiseMax(Vec3::Constant(1e-12));
+  const auto& positions = shape.samples->positions();
+  std::vector<std::uint32_t> cellOf(positions.size());
+  b.start.assign(kBuckets * kBuckets * kBuckets + 1, 0);
+  for (std::uint32_t i = 0; i < positions.size(); ++i) {
+    const auto c = bucketOf(b, positions[i]);
+    cellOf[i] = static_cast<std::uint32_t>(c[0] + kBuckets * (c[1] + kBuckets * c[2]));
+    ++b.start[cellOf[i] + 1];
+  }
+  for (std::size_t k = 1; k < b.start.size(); ++k) {
+    b.start[k] += b.start[k - 1];
+  }
+  b.samples.resize(positions.size());
+  std::vector<std::uint32_t> fill(b.start.begin(), b.start.end() - 1);
+  for (std::uint32_t i = 0; i < positions.size(); ++i) {
+    b.samples[fill[cellOf[i]]++] = i;
+  }
+}
+
+/// Call f(sampleIndex) for the samples of `shape` in buckets that overlap the local box
+/// [lo, hi] (body frame of the shape, unscaled).
+template <typename F>
+void forSamplesNear(const ShapeModel& shape, const Vec3& lo, const Vec3& hi, F&& f) {
+  const SampleBuckets& b = shape.buckets;
+  const geometry::Box3 bounds = shape.mesh.bounds();
+  if ((hi.array() < bounds.min.array()).any() || (lo.array() > bounds.max.array()).any()) {
+    return;
+  }
+  const auto c0 = bucketOf(b, lo);
+  const auto c1 = bucketOf(b, hi);
+  for (int z = c0[2]; z <= c1[2]; ++z) {
+    for (int y = c0[1]; y <= c1[1]; ++y) {
+      for (int x = c0[0]; x <= c1[0]; ++x) {
+        const int cell = x + kBuckets * (y + kBuckets * z);
+        for (std::uint32_t j = b.start[cell]; j < b.start[cell + 1]; ++j) {
+          f(b.samples[j]);
+        }
+      }
+    }
+  }
+}
+
 } // namespace
 
 /// What one candidate pair produces in the force stage: written by one thread, read serially.
@@ -70,6 +127,7 @@ MaterialId World::addMaterial(const Material& m) {
     core::failInput(where, "penalty modulus = {} Pa: must be positive (e.g. 1e9)", m.penaltyModulus);
   }
   materials_.push_back(m);
+  materialDamping_.push_back(contact::dampingRatioFromRestitution(m.restitution));
   cachedStep_ = -1.0;
   return static_cast<MaterialId>(materials_.size() - 1);
 }
@@ -89,6 +147,7 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
   model->unitMass = geometry::computeMassProperties(model->mesh);
   model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
   model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
+  buildBuckets(*model);
   core::logger("simulation")
       ->debug("shape '{}': {} triangles, {} samples, level set {}x{}x{} (h = {:.4g} m)", name,
               model->mesh.triangleCount(), model->samples->size(), model->levelSet->nodeCounts()[0],
@@ -155,7 +214,7 @@ contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, dou
   p.lengthScale = lengthScale;
   p.frictionStatic = std::min(ma.frictionStatic, mb.frictionStatic);
   p.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
-  p.dampingRatio = contact::dampingRatioFromRestitution(std::min(ma.restitution, mb.restitution));
+  p.dampingRatio = std::max(materialDamping_[a], materialDamping_[b]); // the smaller restitution
   p.tangentialStiffnessRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
   return p;
 }
@@ -163,9 +222,9 @@ contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, dou
 double World::stableTimeStep() const {
   double limit = std::numeric_limits<double>::infinity();
   double maxModulus = 0.0, maxZeta = 0.0;
-  for (const auto& m : materials_) {
-    maxModulus = std::max(maxModulus, m.penaltyModulus);
-    maxZeta = std::max(maxZeta, contact::dampingRatioFromRestitution(m.restitution));
+  for (std::size_t i = 0; i < materials_.size(); ++i) {
+    maxModulus = std::max(maxModulus, materials_[i].penaltyModulus);
+    maxZeta = std::max(maxZeta, materialDamping_[i]);
   }
   for (BodyId b = 0; b < bodies_.size(); ++b) {
     if (bodies_.motionType(b) == dynamics::MotionType::Static) {
@@ -278,11 +337,27 @@ void World::computeForces(double dt) {
     double inverseMassSum = bodies_.inverseMass(a);
     if (plane) {
       const StaticPlane& pl = planes_[pw.key.second & ~kPlaneBit];
-      for (std::uint32_t i = 0; i < samplesA.size(); ++i) {
-        const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
-        const double phi = (X - pl.point).dot(pl.normal);
-        if (phi < 0.0) {
-          engaged.push_back({i, X, pl.normal, -phi, sA * sA * samplesA.areas()[i]});
+      // Visit only the buckets that reach below the plane: a body resting on a floor touches it
+      // with a sixth of its samples or fewer.
+      const SampleBuckets& bk = shapeA.buckets;
+      const Vec3 localNormal = qA.conjugate() * pl.normal;
+      const double reach = 0.5 * sA * bk.cell.cwiseProduct(localNormal.cwiseAbs()).sum();
+      for (int cell = 0; cell < kBuckets * kBuckets * kBuckets; ++cell) {
+        if (bk.start[cell] == bk.start[cell + 1]) {
+          continue;
+        }
+        const Vec3 index(cell % kBuckets, (cell / kBuckets) % kBuckets, cell / (kBuckets * kBuckets));
+        const Vec3 centre = bk.origin + bk.cell.cwiseProduct(index + Vec3::Constant(0.5));
+        if ((xA + qA * (sA * centre) - pl.point).dot(pl.normal) > reach) {
+          continue;
+        }
+        for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
+          const std::uint32_t i = bk.samples[j];
+          const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
+          const double phi = (X - pl.point).dot(pl.normal);
+          if (phi < 0.0) {
+            engaged.push_back({i, X, pl.normal, -phi, sA * sA * samplesA.areas()[i]});
+          }
         }
       }
       params = pairParameters(bodyMaterial_[a], pl.material, lengthScale);
@@ -308,10 +383,14 @@ void World::computeForces(double dt) {
         const Vec3& xt = bodies_.position(target);
         const auto& box = boxes_[target];
         const auto& samples = *ps.samples;
-        for (std::uint32_t i = 0; i < samples.size(); ++i) {
+        // The target's world box seen from the probe's (unscaled) body frame, as a box there.
+        const geometry::Mat3 toProbe = qp.conjugate().toRotationMatrix();
+        const Vec3 centre = toProbe * (box.centre() - xp) / sp;
+        const Vec3 half = toProbe.cwiseAbs() * (0.5 * box.size()) / sp;
+        forSamplesNear(ps, centre - half, centre + half, [&](std::uint32_t i) {
           const Vec3 X = xp + qp * (sp * samples.positions()[i]);
           if (!insideBox(box, X)) {
-            continue;
+            return;
           }
           const contact::LevelSetQuery q = ts.levelSet->query(qtInv * (X - xt), st);
           if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
@@ -319,7 +398,7 @@ void World::computeForces(double dt) {
             engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi,
                                sp * sp * samples.areas()[i]});
           }
-        }
+        });
       }
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
       params.penaltyModulus *= 0.5;

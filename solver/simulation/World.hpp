@@ -59,6 +59,17 @@ struct WorldSettings {
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
 };
 
+/// Surface samples bucketed on a coarse grid over the shape's bounds, so that the narrow phase
+/// visits only the samples near the overlap of two boxes (a face contact touches a sixth of a
+/// cube's samples).
+struct SampleBuckets {
+  static constexpr int kCells = 6;           ///< buckets per axis (unit: -)
+  Vec3 origin = Vec3::Zero();                ///< lower corner (unit: m, body frame, unscaled)
+  Vec3 cell = Vec3::Ones();                  ///< bucket size (unit: m)
+  std::vector<std::uint32_t> start;          ///< kCells^3 + 1 offsets into `samples`
+  std::vector<std::uint32_t> samples;        ///< sample indices grouped by bucket
+};
+
 /// A shape prepared for simulation: moved to its principal frame, with its contact geometry.
 struct ShapeModel {
   std::string name;
@@ -67,6 +78,7 @@ struct ShapeModel {
   Quat naturalToBody = Quat::Identity(); ///< rotation from the shape's natural frame to its principal frame
   std::unique_ptr<contact::LevelSet> levelSet;
   std::unique_ptr<contact::SurfaceSamples> samples;
+  SampleBuckets buckets;
   double radius = 0.0;                  ///< largest vertex distance from the centroid (m)
 };
 
@@ -156,6 +168,7 @@ private:
   dynamics::RigidBodies bodies_;
   std::vector<std::unique_ptr<ShapeModel>> shapes_;
   std::vector<Material> materials_;
+  std::vector<double> materialDamping_; ///< damping ratio of each material's restitution (unit: -)
   std::vector<StaticPlane> planes_;
   // Per-body cold-ish data used by the contact stages.
   std::vector<ShapeId> bodyShape_;

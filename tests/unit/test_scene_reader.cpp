@@ -479,6 +479,24 @@ TEST(SceneSlope, ProfileOfSeed001Toe) {
   EXPECT_EQ(slopeHeight(s, 35), 10.0);        // crest
 }
 
+TEST(SceneWarnings, NonFatalNotesAreCollected) {
+  const std::string text = "shapes:\n  c: {generator: cube, seed: 4}\nmaterials:"
+                           "\n  concrete: {density: 2400, friction: 0.75, restitution: 0.05, penalty: 1e6}\n"
+                           "duration: 1\nbodies:\n  - {shape: c, dn: 1, material: concrete, position: [0, 0, 2]}\n"
+                           "static:\n  - {type: heightfield, material: concrete, origin: [0, 0, 0], extent: [10.5, 4], "
+                           "max_depth: 0.2}\n";
+  const Scene s = parseScene(text, kScenes, "t.yaml");
+  ASSERT_EQ(s.warnings.size(), 3u) << describeScene(s);
+  EXPECT_CONTAINS(s.warnings[0], "t.yaml:4: materials.concrete.penalty = 1e6: outside 1e7..1e11 Pa");
+  EXPECT_CONTAINS(s.warnings[1], "t.yaml:2: shapes.c.seed = 4: 'cube' is not a random shape");
+  EXPECT_CONTAINS(s.warnings[2], "static[0].extent = [10.5, 4]: 10.5 m is not a whole number of 1 m cells: the field "
+                                 "covers 10 m");
+  EXPECT_EQ(s.statics.heightFields.at(0).field.cellsX, 10);
+  EXPECT_EQ(s.statics.heightFields.at(0).field.cellsY, 4);
+  // describeScene repeats them for the run log.
+  EXPECT_CONTAINS(describeScene(s), "warnings (3):");
+}
+
 // --------------------------------------------------------------------------------------------
 // Example files: the documented ones parse, and docs/scene-file.md shows them verbatim
 // --------------------------------------------------------------------------------------------
@@ -531,6 +549,7 @@ TEST(SceneErrors, WrongType) {
   EXPECT_CONTAINS(b, "bodies[0].fixed = maybe: expected true or false");
   const std::string i = errorFrom("seed: -3\n" + oneBody());
   EXPECT_CONTAINS(i, "test.yaml:1: seed = -3: expected an integer >= 0");
+  EXPECT_CONTAINS(errorFrom("duration: 1\n" + oneBody()), "test.yaml:2: duration: key given twice; keep one");
   const std::string m = errorFrom("duration: 1\nmaterials: [concrete]\n");
   EXPECT_CONTAINS(m, "test.yaml:2: materials: expected a mapping of material names");
 }
@@ -614,6 +633,8 @@ TEST(SceneErrors, YamlSyntaxErrorNamesTheLine) {
   const std::string tab = errorFrom("duration: 1\nmaterials:\n  concrete: {density: 2400\n  friction: [0.75\n");
   EXPECT_CONTAINS(tab, "test.yaml:");
   EXPECT_CONTAINS(errorFrom(""), "test.yaml: the scene is empty");
+  EXPECT_CONTAINS(errorFrom("just text"), "test.yaml: expected a mapping of key: value at the top of the file, found "
+                                          "'just text'; valid keys are: description, seed");
 }
 
 TEST(SceneErrors, MissingMeshNamesTheResolvedPath) {
