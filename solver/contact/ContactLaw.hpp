@@ -36,7 +36,7 @@ struct ContactParameters {
   double frictionStatic = 0.75;       ///< mu_s, Coulomb coefficient while sticking (unit: -)
   double frictionDynamic = 0.75;      ///< mu_d, Coulomb coefficient while sliding (unit: -)
   double dampingRatio = 0.0;          ///< zeta of the contact patch (unit: -)
-  double tangentialStiffnessRatio = 1.0; ///< r_t = k_t / k (unit: -)
+  double tangentialStiffnessRatio = 8.0 / 9.0; ///< r_t = k_t / k (unit: -): Mindlin 2(1-nu)/(2-nu), nu = 0.2 (concrete)
 };
 
 /// Restitution of a linear spring-dashpot with damping ratio zeta whose force is clamped at zero

@@ -45,7 +45,7 @@ struct Material {
   double frictionDynamic = 0.75;       ///< Coulomb coefficient while sliding (unit: -)
   double restitution = 0.05;           ///< normal coefficient of restitution (unit: -)
   double penaltyModulus = 1.0e9;       ///< contact pressure per unit relative depth (unit: Pa)
-  double tangentialStiffnessRatio = 1.0; ///< k_t / k_n (unit: -)
+  double tangentialStiffnessRatio = 8.0 / 9.0; ///< k_t / k_n (unit: -): Mindlin 2(1-nu)/(2-nu), nu = 0.2 (concrete)
 };
 
 /// Settings of the whole simulation.
