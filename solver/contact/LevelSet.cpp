@@ -226,8 +226,10 @@ ClosestPoint MeshDistance::closest(const Vec3& x) const {
     // child first so the nearer one is searched first and tightens the bound sooner.
     const std::int32_t childA = self + 1;
     const std::int32_t childB = node.first;
-    const double dA = boxDistanceSquared(x, nodes_[static_cast<std::size_t>(childA)].lo, nodes_[static_cast<std::size_t>(childA)].hi);
-    const double dB = boxDistanceSquared(x, nodes_[static_cast<std::size_t>(childB)].lo, nodes_[static_cast<std::size_t>(childB)].hi);
+    const Node& a = nodes_[static_cast<std::size_t>(childA)];
+    const Node& b = nodes_[static_cast<std::size_t>(childB)];
+    const double dA = boxDistanceSquared(x, a.lo, a.hi);
+    const double dB = boxDistanceSquared(x, b.lo, b.hi);
     const bool aFirst = dA <= dB;
     const std::int32_t nearChild = aFirst ? childA : childB;
     const std::int32_t farChild = aFirst ? childB : childA;
@@ -319,7 +321,8 @@ LevelSet::LevelSet(const TriangleMesh& mesh, const LevelSetSettings& settings, c
     }
   }
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  core::logger("contact")->debug("{}: level set {} x {} x {} nodes, h = {:.4g} m (Dn / {:.3g}), {:.0f} kB, built in {:.3f} s",
+  core::logger("contact")->debug("{}: level set {} x {} x {} nodes, h = {:.4g} m (Dn / {:.3g}), {:.0f} kB, "
+                                 "built in {:.3f} s",
                                  source, n_[0], n_[1], n_[2], h_, dn_ / h_, memoryBytes() / 1024.0, buildSeconds_);
 }
 

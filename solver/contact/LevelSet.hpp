@@ -120,11 +120,13 @@ struct LevelSetQuery {
 /// Inside the grid box: phi(x) = trilinear interpolant of the 8 nodes of the cell holding x;
 /// exact for a linear field, so under a flat face, away from its edges, phi is the true depth.
 /// gradient = exact gradient of that interpolant (continuous inside cells, jumps across cell
-/// faces); a penalty force k phi grad(phi) is then the gradient of the continuous potential
-/// k phi^2 / 2.
+/// faces); a penalty force -k phi grad(phi) (outward where phi < 0) is then minus the gradient
+/// of the continuous potential k phi^2 / 2 and does no net work around a closed path.
 /// Outside the grid box: phi(x) = |x - c| + phi(c), c the nearest point of the box: positive
-/// (phi(c) >= about marginCells h), continuous across the box, cheap, at least the distance to
-/// the mesh bounding box and at most the true distance plus the interpolation error at c.
+/// (the box boundary is >= marginCells h from the mesh), continuous across the box, cheap, and
+/// never below the distance to the mesh bounding box nor below the true distance minus the
+/// interpolation error at c (the path through c is not shorter than the shortest one), so a
+/// far point is never reported inside, nor nearer than it is beyond that error.
 ///
 /// Thread-safe: const member functions only read.
 class LevelSet {
@@ -162,7 +164,9 @@ public:
   [[nodiscard]] double nominalDiameter() const { return dn_; }             ///< Dn of the mesh (unit: m)
   /// Node value (unit: m), i < nx, j < ny, k < nz.
   [[nodiscard]] double nodeValue(int i, int j, int k) const {
-    return values_[static_cast<std::size_t>(i) + static_cast<std::size_t>(n_[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(n_[1]) * static_cast<std::size_t>(k))];
+    const auto nx = static_cast<std::size_t>(n_[0]);
+    const auto ny = static_cast<std::size_t>(n_[1]);
+    return values_[static_cast<std::size_t>(i) + nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k))];
   }
   /// All node values, x fastest then y then z (unit: m).
   [[nodiscard]] const std::vector<float>& values() const { return values_; }

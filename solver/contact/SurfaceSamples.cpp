@@ -30,7 +30,8 @@ SurfaceSamples::SurfaceSamples(const geometry::TriangleMesh& mesh, const Surface
     spacing_ = settings.spacingOverDn * dn;
   }
   if (!(spacing_ > 0.0) || !std::isfinite(spacing_)) {
-    core::failInput(source, "spacing = {} m: must be positive and finite (or 0 to use spacingOverDn)", settings.spacing);
+    core::failInput(source, "spacing = {} m: must be positive and finite (or 0 to use spacingOverDn)",
+                    settings.spacing);
   }
   // Bisection to edges <= h makes at most about 8.4 area / h^2 triangles (docs/theory.md,
   // section 3), i.e. about half as many vertices; refuse before spending the time.

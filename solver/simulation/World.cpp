@@ -356,7 +356,12 @@ void World::computeForces(double dt) {
           const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
           const double phi = (X - pl.point).dot(pl.normal);
           if (phi < 0.0) {
-            engaged.push_back({i, X, pl.normal, -phi, sA * sA * samplesA.areas()[i]});
+            // Projected tributary area: the pressure acts on the part of the sample's area that
+            // faces the plane, so a face pressed flat engages exactly its own area.
+            const double area = -sA * sA * (qA * samplesA.areaVectors()[i]).dot(pl.normal);
+            if (area > 0.0) {
+              engaged.push_back({i, X, pl.normal, -phi, area});
+            }
           }
         }
       }
@@ -394,9 +399,11 @@ void World::computeForces(double dt) {
           }
           const contact::LevelSetQuery q = ts.levelSet->query(qtInv * (X - xt), st);
           if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
-            const Vec3 n = qt * q.normal;
-            engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi,
-                               sp * sp * samples.areas()[i]});
+            const Vec3 n = qt * q.normal; // out of the target: pushes the probe
+            const double area = -sp * sp * (qp * samples.areaVectors()[i]).dot(n);
+            if (area > 0.0) {
+              engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi, area});
+            }
           }
         });
       }

@@ -227,3 +227,15 @@ TEST(ContactPhysics, OneAndTwoThreadsGiveBitIdenticalStates) {
     EXPECT_EQ(one[i], two[i]) << "state entry " << i;
   }
 }
+
+TEST(ContactPhysics, RestingOverlapIsWeightOverFaceStiffness) {
+  // A cube at rest on its face: the penalty pressure E_p d / L over exactly the face area A
+  // (projected tributary areas) carries the weight, so d = m g L / (E_p A) = 2.354e-5 m for
+  // 2400 kg, L = 1 m, A = 1 m^2, E_p = 1e9 Pa. Within 1 %: the damped settling must be over.
+  CubeScene s(concrete(0.3, 0.6));
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5));
+  s.world.advanceTo(0.5);
+  const double depth = 0.5 - s.world.bodies().position(b).z();
+  EXPECT_NEAR(depth, 2400.0 * 9.81 / 1e9, 0.01 * 2400.0 * 9.81 / 1e9);
+}

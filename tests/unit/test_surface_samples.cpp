@@ -227,7 +227,7 @@ TEST(SurfaceSamplesCube, NormalsAtFacesEdgesAndCornersAndFlatContactArea) {
   // a third of the side triangles along the edges.
   EXPECT_NEAR(bottomProjected, 1.0, 1e-12);
   EXPECT_GT(bottomArea, 1.0);
-  std::printf("[ cube ] %d face, %d edge, 8 corner samples; bottom-face samples: scalar area %.4f, projected %.4f m^2\n",
+  std::printf("[ cube ] %d face, %d edge, 8 corner samples; bottom face: scalar area %.4f, projected %.4f m^2\n",
               counts[1], counts[2], bottomArea, bottomProjected);
 }
 
