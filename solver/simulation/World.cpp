@@ -4,6 +4,7 @@
 #include "core/Error.hpp"
 #include "core/Log.hpp"
 #include "dynamics/Integrator.hpp"
+#include "geometry/ConvexHull.hpp"
 
 #include <fmt/format.h>
 
@@ -15,6 +16,8 @@ namespace armour::simulation {
 namespace {
 
 constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< second pair index of a body-plane pair
+constexpr std::uint32_t kConvexBit = 0x40000000u; ///< second pair index of a body-convex pair
+constexpr std::uint32_t kStaticBits = kPlaneBit | kConvexBit;
 constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A
 
 bool insideBox(const geometry::Box3& box, const Vec3& p) {
@@ -204,6 +207,25 @@ void World::addPlane(const StaticPlane& plane) {
   forcesReady_ = false;
 }
 
+void World::addConvex(const std::string& name, const std::vector<Vec3>& corners, MaterialId material) {
+  const std::string where = "static piece '" + name + "'";
+  if (material >= materials_.size()) {
+    core::failInput(where, "material index {} does not exist", material);
+  }
+  const geometry::ConvexPolyhedron hull = geometry::convexHullPolyhedron(corners, where);
+  StaticConvex piece;
+  piece.name = name;
+  piece.material = material;
+  piece.normals = hull.normals;
+  piece.offsets = hull.offsets;
+  piece.vertices = hull.vertices;
+  for (const auto& v : hull.vertices) {
+    piece.box.extend(v);
+  }
+  convex_.push_back(std::move(piece));
+  forcesReady_ = false;
+}
+
 Quat World::naturalOrientation(BodyId b) const { return bodies_.orientation(b) * bodyNaturalToBody(b); }
 
 contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, double lengthScale) const {
@@ -270,8 +292,13 @@ double World::timeStep() const {
 
 void World::updateBoxes() {
   const std::size_t n = bodies_.size();
-  boxes_.resize(n);
-  active_.resize(n);
+  // Bodies first, then the static convex pieces (never active: they pair only with awake bodies).
+  boxes_.resize(n + convex_.size());
+  active_.resize(n + convex_.size());
+  for (std::size_t k = 0; k < convex_.size(); ++k) {
+    boxes_[n + k] = convex_[k].box;
+    active_[n + k] = 0;
+  }
   for (BodyId b = 0; b < n; ++b) {
     const ShapeModel& shape = *shapes_[bodyShape_[b]];
     const double s = bodyScale_[b];
@@ -297,7 +324,7 @@ void World::computeForces(double dt) {
   work.reserve(pairs_.size() + nBodies);
   for (const auto& p : pairs_) {
     PairWork pw;
-    pw.key = p;
+    pw.key = p.second < nBodies ? p : contact::BodyPair{p.first, kConvexBit | (p.second - nBodies)};
     work.push_back(std::move(pw));
   }
   for (BodyId b = 0; b < nBodies; ++b) {
@@ -323,7 +350,7 @@ void World::computeForces(double dt) {
   for (std::size_t w = 0; w < work.size(); ++w) {
     PairWork& pw = work[w];
     const BodyId a = pw.key.first;
-    const bool plane = (pw.key.second & kPlaneBit) != 0;
+    const bool plane = (pw.key.second & kStaticBits) != 0; // any static geometry: plane or convex piece
     const auto histIt = history_.find(pw.key);
     const History* previous = histIt == history_.end() ? nullptr : &histIt->second;
     std::vector<Engaged> engaged;
@@ -336,36 +363,75 @@ void World::computeForces(double dt) {
     contact::ContactParameters params;
     double inverseMassSum = bodies_.inverseMass(a);
     if (plane) {
-      const StaticPlane& pl = planes_[pw.key.second & ~kPlaneBit];
-      // Visit only the buckets that reach below the plane: a body resting on a floor touches it
-      // with a sixth of its samples or fewer.
+      // Static geometry as a set of half-spaces: a plane is one, a convex piece several; a
+      // sample is inside when it is below all of them, at the depth of the nearest face.
+      const bool isPlane = (pw.key.second & kPlaneBit) != 0;
+      const std::uint32_t index = pw.key.second & ~kStaticBits;
+      std::vector<Vec3> normals;
+      std::vector<double> offsets;
+      MaterialId staticMaterial = 0;
+      geometry::Box3 region; // where samples can be inside (world)
+      if (isPlane) {
+        const StaticPlane& pl = planes_[index];
+        normals = {pl.normal};
+        offsets = {pl.normal.dot(pl.point)};
+        staticMaterial = pl.material;
+        region = boxes_[a];
+      } else {
+        const StaticConvex& piece = convex_[index];
+        normals = piece.normals;
+        offsets = piece.offsets;
+        staticMaterial = piece.material;
+        region = piece.box;
+      }
+      // Visit only the buckets that reach into the region and below every face.
       const SampleBuckets& bk = shapeA.buckets;
-      const Vec3 localNormal = qA.conjugate() * pl.normal;
-      const double reach = 0.5 * sA * bk.cell.cwiseProduct(localNormal.cwiseAbs()).sum();
+      const geometry::Mat3 toLocal = qA.conjugate().toRotationMatrix();
+      const Vec3 regionCentre = toLocal * (region.centre() - xA) / sA;
+      const Vec3 regionHalf = toLocal.cwiseAbs() * (0.5 * region.size()) / sA;
+      const Vec3 cellHalf = 0.5 * bk.cell;
       for (int cell = 0; cell < kBuckets * kBuckets * kBuckets; ++cell) {
         if (bk.start[cell] == bk.start[cell + 1]) {
           continue;
         }
-        const Vec3 index(cell % kBuckets, (cell / kBuckets) % kBuckets, cell / (kBuckets * kBuckets));
-        const Vec3 centre = bk.origin + bk.cell.cwiseProduct(index + Vec3::Constant(0.5));
-        if ((xA + qA * (sA * centre) - pl.point).dot(pl.normal) > reach) {
+        const Vec3 index3(cell % kBuckets, (cell / kBuckets) % kBuckets, cell / (kBuckets * kBuckets));
+        const Vec3 centre = bk.origin + bk.cell.cwiseProduct(index3 + Vec3::Constant(0.5));
+        if (((centre - regionCentre).cwiseAbs() - regionHalf - cellHalf).maxCoeff() > 0.0) {
+          continue;
+        }
+        const Vec3 worldCentre = xA + qA * (sA * centre);
+        bool outside = false;
+        for (std::size_t k = 0; k < normals.size() && !outside; ++k) {
+          const double reach = sA * cellHalf.dot((toLocal * normals[k]).cwiseAbs());
+          outside = normals[k].dot(worldCentre) - offsets[k] > reach;
+        }
+        if (outside) {
           continue;
         }
         for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
           const std::uint32_t i = bk.samples[j];
           const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
-          const double phi = (X - pl.point).dot(pl.normal);
+          double phi = -std::numeric_limits<double>::infinity();
+          std::size_t nearest = 0;
+          for (std::size_t k = 0; k < normals.size(); ++k) {
+            const double d = normals[k].dot(X) - offsets[k];
+            if (d > phi) {
+              phi = d;
+              nearest = k;
+            }
+          }
           if (phi < 0.0) {
             // Projected tributary area: the pressure acts on the part of the sample's area that
-            // faces the plane, so a face pressed flat engages exactly its own area.
-            const double area = -sA * sA * (qA * samplesA.areaVectors()[i]).dot(pl.normal);
+            // faces the static surface, so a face pressed flat engages exactly its own area.
+            const Vec3& n = normals[nearest];
+            const double area = -sA * sA * (qA * samplesA.areaVectors()[i]).dot(n);
             if (area > 0.0) {
-              engaged.push_back({i, X, pl.normal, -phi, area});
+              engaged.push_back({i, X, n, -phi, area});
             }
           }
         }
       }
-      params = pairParameters(bodyMaterial_[a], pl.material, lengthScale);
+      params = pairParameters(bodyMaterial_[a], staticMaterial, lengthScale);
     } else {
       const BodyId b = pw.key.second;
       const ShapeModel& shapeB = *shapes_[bodyShape_[b]];
@@ -457,7 +523,7 @@ void World::computeForces(double dt) {
     auto torques = bodies_.torques();
     forces[a] += pw.forceA;
     torques[a] += pw.torqueA;
-    if ((pw.key.second & kPlaneBit) == 0) {
+    if ((pw.key.second & kStaticBits) == 0) {
       forces[pw.key.second] += pw.forceB;
       torques[pw.key.second] += pw.torqueB;
     }
@@ -468,12 +534,13 @@ void World::computeForces(double dt) {
     const double dnA = std::cbrt(shapes_[bodyShape_[a]]->unitMass.volume) * bodyScale_[a];
     double dn = dnA;
     std::string other;
-    if ((pw.key.second & kPlaneBit) == 0) {
+    if ((pw.key.second & kStaticBits) == 0) {
       const BodyId b = pw.key.second;
       dn = std::min(dn, std::cbrt(shapes_[bodyShape_[b]]->unitMass.volume) * bodyScale_[b]);
       other = bodies_.describe(b);
     } else {
-      other = "plane '" + planes_[pw.key.second & ~kPlaneBit].name + "'";
+      other = (pw.key.second & kPlaneBit) != 0 ? "plane '" + planes_[pw.key.second & ~kStaticBits].name + "'"
+                                               : "static piece '" + convex_[pw.key.second & ~kStaticBits].name + "'";
     }
     if (pw.maxOverlap > settings_.maxOverlapPerDn * dn) {
       throw SimulationError(fmt::format(

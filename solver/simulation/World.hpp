@@ -103,6 +103,17 @@ struct StaticPlane {
   MaterialId material = 0;
 };
 
+/// A static convex polyhedron {x : n_k . x <= d_k for every face k} (toe blocks, slope pieces,
+/// height-field cells). Unions of pieces model non-convex static geometry.
+struct StaticConvex {
+  std::string name;
+  std::vector<Vec3> normals;   ///< unit outward face normals (unit: -)
+  std::vector<double> offsets; ///< n_k . x = d_k on face k (unit: m)
+  std::vector<Vec3> vertices;  ///< corners (unit: m)
+  geometry::Box3 box;          ///< bounds of the corners (unit: m)
+  MaterialId material = 0;
+};
+
 /// Why a run had to stop.
 class SimulationError : public std::runtime_error {
 public:
@@ -129,6 +140,11 @@ public:
   ShapeId addShape(const std::string& name, const geometry::TriangleMesh& mesh);
   BodyId addBody(const BodySpec& spec);
   void addPlane(const StaticPlane& plane);
+  /// Add a static convex polyhedron: the convex hull of `corners` (world, m). Throws
+  /// core::InputError naming `name` for fewer than 4 corners, flat sets or a bad material.
+  void addConvex(const std::string& name, const std::vector<Vec3>& corners, MaterialId material);
+  [[nodiscard]] std::size_t staticConvexCount() const { return convex_.size(); }
+  [[nodiscard]] const StaticConvex& staticConvex(std::size_t k) const { return convex_[k]; }
 
   /// Stability limit of the explicit step from the stiffest plausible contact of each dynamic body
   /// (translation and rotation, including damping): docs/theory.md (unit: s).
@@ -170,6 +186,7 @@ private:
   std::vector<Material> materials_;
   std::vector<double> materialDamping_; ///< damping ratio of each material's restitution (unit: -)
   std::vector<StaticPlane> planes_;
+  std::vector<StaticConvex> convex_;
   // Per-body cold-ish data used by the contact stages.
   std::vector<ShapeId> bodyShape_;
   std::vector<double> bodyScale_;
@@ -178,7 +195,7 @@ private:
   std::vector<std::uint8_t> active_;
   contact::BroadPhase broadPhase_;
   std::vector<contact::BodyPair> pairs_;
-  /// Friction history per body pair (or body-plane pair: second = bodies + plane index), per
+  /// Friction history per body pair (or body-plane / body-convex pair: second = flag bit | index), per
   /// sample key (direction bit | sample index), sorted by key.
   std::map<contact::BodyPair, std::vector<std::pair<std::uint32_t, contact::PointHistory>>> history_;
   mutable double cachedStep_ = -1.0;

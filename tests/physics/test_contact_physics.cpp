@@ -239,3 +239,23 @@ TEST(ContactPhysics, RestingOverlapIsWeightOverFaceStiffness) {
   const double depth = 0.5 - s.world.bodies().position(b).z();
   EXPECT_NEAR(depth, 2400.0 * 9.81 / 1e9, 0.01 * 2400.0 * 9.81 / 1e9);
 }
+
+TEST(ContactPhysics, ConvexStaticPiecesActLikeTheirFaces) {
+  // A floor made of a static box (a convex piece) must carry a cube exactly like a plane: the
+  // same resting overlap m g L / (E_p A). And a cube dropped over the edge of a narrower block
+  // must be caught by the block's top face, not fall through.
+  CubeScene s(concrete(0.3, 0.6));
+  std::vector<Vec3> corners;
+  for (int i = 0; i < 8; ++i) {
+    corners.emplace_back((i & 1) ? 5.0 : -5.0, (i & 2) ? 5.0 : -5.0, (i & 4) ? 0.0 : -1.0);
+  }
+  s.world.addConvex("block", corners, s.material);
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5));
+  const BodyId edge = s.addCube(Vec3(4.7, 0, 0.6)); // overhangs the block by 0.2 m
+  s.world.advanceTo(0.5);
+  const double depth = 0.5 - s.world.bodies().position(b).z();
+  EXPECT_NEAR(depth, 2400.0 * 9.81 / 1e9, 0.01 * 2400.0 * 9.81 / 1e9);
+  EXPECT_GT(s.world.bodies().position(edge).z(), 0.49) << "the overhanging cube rests on the block";
+  EXPECT_EQ(s.world.staticConvexCount(), 1u);
+  EXPECT_EQ(s.world.staticConvex(0).normals.size(), 6u) << "Qhull merges coplanar facets: 6 faces";
+}
