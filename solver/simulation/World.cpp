@@ -189,6 +189,7 @@ BodyId World::addBody(const BodySpec& spec) {
   bodyShape_.push_back(spec.shape);
   bodyScale_.push_back(s);
   bodyMaterial_.push_back(spec.material);
+  restTime_.push_back(0.0);
   cachedStep_ = -1.0;
   forcesReady_ = false;
   return id;
@@ -551,7 +552,79 @@ void World::computeForces(double dt) {
     }
     nextHistory.emplace(pw.key, std::move(pw.history));
   }
+  // Pairs that were not examined because none of their bodies is awake keep their friction
+  // springs: a sleeping pack wakes with the same contact state it fell asleep with.
+  for (auto& [key, h] : history_) {
+    const bool bodyPair = (key.second & kStaticBits) == 0;
+    if (!bodies_.isAwake(key.first) && (!bodyPair || !bodies_.isAwake(key.second))) {
+      nextHistory.emplace(key, std::move(h));
+    }
+  }
   history_ = std::move(nextHistory);
+}
+
+void World::updateSleep(double dt) {
+  const SleepSettings& st = settings_.sleep;
+  if (!st.enabled) {
+    return;
+  }
+  const auto n = static_cast<BodyId>(bodies_.size());
+  for (BodyId b : bodies_.awakeBodies()) {
+    const bool resting = bodies_.velocity(b).norm() < st.linearSpeed &&
+                         bodies_.worldAngularVelocity(b).norm() < st.angularSpeed;
+    restTime_[b] = resting ? restTime_[b] + dt : 0.0;
+  }
+  // Contact islands over non-static bodies (union-find on the pairs in contact).
+  std::vector<BodyId> parent(n);
+  for (BodyId b = 0; b < n; ++b) {
+    parent[b] = b;
+  }
+  const auto find = [&](BodyId b) {
+    while (parent[b] != b) {
+      parent[b] = parent[parent[b]];
+      b = parent[b];
+    }
+    return b;
+  };
+  std::vector<BodyId> toWake;
+  for (const auto& [key, h] : history_) {
+    if ((key.second & kStaticBits) != 0 || h.empty()) {
+      continue;
+    }
+    const BodyId a = key.first, b = key.second;
+    const auto ta = bodies_.motionType(a), tb = bodies_.motionType(b);
+    if (ta == dynamics::MotionType::Static || tb == dynamics::MotionType::Static) {
+      continue;
+    }
+    parent[find(a)] = find(b);
+    // Something moving touches a sleeper: wake it (its neighbours follow as contact spreads).
+    if (ta == dynamics::MotionType::Sleeping && bodies_.isAwake(b) && restTime_[b] < st.time) {
+      toWake.push_back(a);
+    }
+    if (tb == dynamics::MotionType::Sleeping && bodies_.isAwake(a) && restTime_[a] < st.time) {
+      toWake.push_back(b);
+    }
+  }
+  for (BodyId b : toWake) {
+    bodies_.wake(b);
+    restTime_[b] = 0.0;
+  }
+  // An island sleeps when every awake member has rested long enough.
+  std::vector<char> islandRestless(n, 0);
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (restTime_[b] < st.time) {
+      islandRestless[find(b)] = 1;
+    }
+  }
+  std::vector<BodyId> toSleep;
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (!islandRestless[find(b)]) {
+      toSleep.push_back(b);
+    }
+  }
+  for (BodyId b : toSleep) {
+    bodies_.sleep(b);
+  }
 }
 
 void World::step() {
@@ -566,6 +639,7 @@ void World::step() {
   dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
   time_ += dt;
   ++steps_;
+  stats_.awakeBodies = bodies_.awakeBodies().size();
   for (BodyId b : bodies_.awakeBodies()) {
     if (!bodies_.position(b).allFinite() || !bodies_.velocity(b).allFinite() ||
         !bodies_.worldAngularVelocity(b).allFinite()) {
@@ -574,6 +648,7 @@ void World::step() {
                                         time_, bodies_.describe(b)));
     }
   }
+  updateSleep(dt);
 }
 
 void World::advanceTo(double t) {

@@ -48,6 +48,16 @@ struct Material {
   double tangentialStiffnessRatio = 8.0 / 9.0; ///< k_t / k_n (unit: -): Mindlin 2(1-nu)/(2-nu), nu = 0.2 (concrete)
 };
 
+/// When bodies may sleep: a sleeping body is skipped by the integrator and its pairs with other
+/// sleeping or static bodies are not examined, so a settled pack costs nothing until something
+/// moving touches it.
+struct SleepSettings {
+  bool enabled = true;
+  double linearSpeed = 1.0e-3;  ///< centroid speed below which a body is at rest (unit: m/s)
+  double angularSpeed = 1.0e-3; ///< angular speed below which a body is at rest (unit: rad/s)
+  double time = 0.5;            ///< a whole contact island must rest this long to sleep (unit: s)
+};
+
 /// Settings of the whole simulation.
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
@@ -57,6 +67,7 @@ struct WorldSettings {
   contact::SurfaceSampleSettings samples; ///< surface sample spacing per shape
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
+  SleepSettings sleep;
 };
 
 /// Surface samples bucketed on a coarse grid over the shape's bounds, so that the narrow phase
@@ -124,6 +135,7 @@ public:
 struct StepStatistics {
   std::size_t candidatePairs = 0;   ///< broad-phase pairs (bodies and planes)
   std::size_t contactPoints = 0;    ///< engaged sample points
+  std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
   double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
 };
 
@@ -178,6 +190,7 @@ private:
   struct PairWork;
   void computeForces(double dt);
   void updateBoxes();
+  void updateSleep(double dt);
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
 
   WorldSettings settings_;
@@ -191,6 +204,7 @@ private:
   std::vector<ShapeId> bodyShape_;
   std::vector<double> bodyScale_;
   std::vector<MaterialId> bodyMaterial_;
+  std::vector<double> restTime_; ///< how long each body has been at rest (unit: s)
   std::vector<geometry::Box3> boxes_;
   std::vector<std::uint8_t> active_;
   contact::BroadPhase broadPhase_;

@@ -20,13 +20,20 @@ using namespace armour::simulation;
 
 namespace {
 
+WorldSettings noSleep() {
+  WorldSettings s;
+  s.sleep.enabled = false;
+  return s;
+}
+
 /// A world with one material, one shape (a cube of side 1 m unless told) and helpers.
 struct CubeScene {
   World world;
   MaterialId material = 0;
   ShapeId cube = 0;
 
-  explicit CubeScene(const Material& m = {}, WorldSettings settings = {}) : world(settings) {
+  /// Sleeping is off unless a test turns it on: these tests are about the contact physics.
+  explicit CubeScene(const Material& m = {}, WorldSettings settings = noSleep()) : world(settings) {
     material = world.addMaterial(m);
     geometry::ShapeRequest r;
     r.volume = 1.0;
@@ -99,7 +106,7 @@ TEST(ContactPhysics, ElasticBouncesConserveEnergy) {
   // mechanical energy must drift by less than 1 % (issue). Each entry into and exit from contact
   // in mid-step costs O((omega dt)^2) of the bounce energy; at half the default safety factor
   // (omega dt = 0.07 for the face contact) that is below 1e-5 per bounce.
-  WorldSettings settings;
+  WorldSettings settings = noSleep();
   settings.timeStepSafety = 0.1;
   CubeScene s(concrete(1.0, 0.0), settings);
   s.addFloor();
@@ -166,7 +173,7 @@ TEST(ContactPhysics, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAccelerati
 }
 
 TEST(ContactPhysics, UserTimeStepAboveTheLimitIsRefused) {
-  WorldSettings settings;
+  WorldSettings settings = noSleep();
   settings.timeStep = 0.1;
   CubeScene s(concrete(0.3, 0.5), settings);
   s.addFloor();
