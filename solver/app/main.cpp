@@ -2,6 +2,7 @@
 /// The `armour` program: one entry point, one subcommand per job.
 
 #include "app/CommandContext.hpp"
+#include "app/RunCommands.hpp"
 #include "app/ShapeCommands.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   app.add_subcommand("version", "print the version and build information (git hash, compiler, OpenMP threads)")
       ->callback([] { std::cout << armour::core::buildInfo() << "\n"; });
   armour::app::addShapeCommands(app, global);
+  armour::app::addRunCommands(app, global);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {

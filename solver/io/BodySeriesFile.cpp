@@ -1,0 +1,397 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/BodySeriesFile.hpp"
+
+#include "core/AtomicFile.hpp"
+#include "core/BuildInfo.hpp"
+#include "core/Error.hpp"
+#include "core/Log.hpp"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+#include <netcdf.h>
+
+#include <algorithm>
+#include <array>
+#include <ctime>
+#include <stdexcept>
+#include <system_error>
+
+namespace armour::io {
+namespace {
+
+/// Largest chunk we ask HDF5 for. netCDF gives every variable its own chunk cache and enlarges
+/// it to hold a chunk, but a chunk that is only partly filled when it leaves the cache is read
+/// back, decompressed and recompressed on the next record: keeping chunks to 1 MiB keeps each
+/// variable's working chunk resident (netCDF 4.9's default cache is 16 MiB) and the cost of a
+/// flush small, while 64 records of a few hundred bodies still fit in one chunk.
+constexpr std::size_t kMaxChunkBytes = std::size_t{1} << 20;
+/// Records copied per read/write when a resumed file is rebuilt (bounded memory, few calls).
+constexpr std::size_t kCopyBytes = std::size_t{8} << 20;
+/// Records per chunk of the time coordinate: small and read whole by every tool, so uncompressed.
+constexpr std::size_t kTimeChunk = 1024;
+
+constexpr const char* kAxesComment =
+    "world frame: x onshore (wave direction), y along the breakwater trunk, z up; vec index 0, 1, 2 = x, y, z";
+
+/// The variables that grow along time, in the order a record is written (time last, so that a
+/// record cut short by a kill shows the fill value as its time).
+constexpr std::array<const char*, 7> kRecordVariables = {
+    "position", "orientation", "velocity", "angular_velocity", "contact_count", "max_contact_force", "time"};
+
+struct Chunking {
+  std::size_t records;
+  std::size_t bodies;
+};
+
+/// Chunk shape (records x bodies) for a variable of `width` values of `bytes` each per body.
+Chunking chunkShape(std::size_t requestedRecords, std::size_t bodies, std::size_t width, std::size_t bytes) {
+  const std::size_t record = bodies * width * bytes;
+  if (record >= kMaxChunkBytes) {
+    return {1, std::max<std::size_t>(1, kMaxChunkBytes / (width * bytes))};
+  }
+  return {std::clamp<std::size_t>(kMaxChunkBytes / record, 1, std::max<std::size_t>(1, requestedRecords)), bodies};
+}
+
+std::string readTextAttribute(int ncid, int var, const char* name) {
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(ncid, var, name, &type, &length) != NC_NOERR || type != NC_CHAR) {
+    return {};
+  }
+  std::string text(length, '\0');
+  if (length > 0 && nc_get_att_text(ncid, var, name, text.data()) != NC_NOERR) {
+    return {};
+  }
+  return text;
+}
+
+/// Closes a file opened for reading on every path out of the resume code.
+struct ReadOnlyFile {
+  int ncid = -1;
+  ~ReadOnlyFile() {
+    if (ncid >= 0) {
+      nc_close(ncid);
+    }
+  }
+};
+
+} // namespace
+
+void BodySeriesFile::check(int status, const char* what) const {
+  if (status != NC_NOERR) {
+    core::failInput(settings_.path.string(),
+                    "netCDF could not {}: {}; check that the folder is writable and the disk is not full",
+                    what, nc_strerror(status));
+  }
+}
+
+void BodySeriesFile::create(const std::filesystem::path& file, const std::vector<SeriesBody>& bodies,
+                            const std::string& history) {
+  check(nc_create(file.c_str(), NC_NETCDF4 | NC_CLOBBER, &ncid_), "create the file");
+  const std::size_t n = bodies.size();
+  std::size_t nameLength = 1;
+  for (const auto& b : bodies) {
+    nameLength = std::max(nameLength, b.name.size());
+  }
+
+  const auto text = [&](int var, const char* name, const std::string& value) {
+    check(nc_put_att_text(ncid_, var, name, value.size(), value.c_str()), "write an attribute");
+  };
+  text(NC_GLOBAL, "Conventions", "CF-1.8");
+  text(NC_GLOBAL, "title", settings_.title);
+  text(NC_GLOBAL, "source", "armour " + core::version());
+  text(NC_GLOBAL, "history", history);
+  text(NC_GLOBAL, "comment",
+       "Rigid-body state of every body at each series output time (armour, docs/output-files.md). "
+       "Axes: x onshore (wave direction), y along the breakwater trunk, z up. SI units.");
+
+  int timeDim = -1, bodyDim = -1, vecDim = -1, quatDim = -1, strDim = -1;
+  check(nc_def_dim(ncid_, "time", NC_UNLIMITED, &timeDim), "define the time dimension");
+  check(nc_def_dim(ncid_, "body", n, &bodyDim), "define the body dimension");
+  check(nc_def_dim(ncid_, "vec", 3, &vecDim), "define the vec dimension");
+  check(nc_def_dim(ncid_, "quat", 4, &quatDim), "define the quat dimension");
+  check(nc_def_dim(ncid_, "name_strlen", nameLength, &strDim), "define the name_strlen dimension");
+
+  check(nc_def_var(ncid_, "time", NC_DOUBLE, 1, &timeDim, &timeVar_), "define time");
+  const std::size_t timeChunk = kTimeChunk;
+  check(nc_def_var_chunking(ncid_, timeVar_, NC_CHUNKED, &timeChunk), "chunk time");
+  text(timeVar_, "units", "s");
+  text(timeVar_, "standard_name", "time");
+  text(timeVar_, "long_name", "simulated time");
+  text(timeVar_, "axis", "T");
+
+  int idVar = -1, nameVar = -1;
+  check(nc_def_var(ncid_, "body_id", NC_INT, 1, &bodyDim, &idVar), "define body_id");
+  text(idVar, "long_name", "body id");
+  text(idVar, "units", "1");
+  const std::array<int, 2> nameDims{bodyDim, strDim};
+  check(nc_def_var(ncid_, "body_name", NC_CHAR, 2, nameDims.data(), &nameVar), "define body_name");
+  text(nameVar, "long_name", "body name");
+
+  // Data variables (time, body[, vec|quat]), chunked along time and deflated.
+  const auto define = [&](const char* name, nc_type type, int componentDim, std::size_t width, const char* units,
+                          const char* longName, int& var) {
+    std::array<int, 3> dims{timeDim, bodyDim, componentDim};
+    const int ndims = componentDim >= 0 ? 3 : 2;
+    check(nc_def_var(ncid_, name, type, ndims, dims.data(), &var), "define a variable");
+    const auto chunk = chunkShape(settings_.chunkRecords, n, width, type == NC_DOUBLE ? 8 : 4);
+    const std::array<std::size_t, 3> chunks{chunk.records, chunk.bodies, width};
+    check(nc_def_var_chunking(ncid_, var, NC_CHUNKED, chunks.data()), "set the chunking");
+    if (settings_.deflateLevel > 0) {
+      // Shuffle groups the bytes of equal significance, which is what lets zlib squeeze doubles.
+      check(nc_def_var_deflate(ncid_, var, 1, 1, std::clamp(settings_.deflateLevel, 1, 9)), "set the compression");
+    }
+    text(var, "units", units);
+    text(var, "long_name", longName);
+    text(var, "coordinates", "body_name");
+    if (componentDim == vecDim) {
+      text(var, "comment", kAxesComment);
+    }
+  };
+  define("position", NC_DOUBLE, vecDim, 3, "m", "centre of mass position", positionVar_);
+  define("orientation", NC_DOUBLE, quatDim, 4, "1", "orientation quaternion (w, x, y, z), body to world",
+         orientationVar_);
+  define("velocity", NC_DOUBLE, vecDim, 3, "m s-1", "centre of mass velocity", velocityVar_);
+  define("angular_velocity", NC_DOUBLE, vecDim, 3, "rad s-1", "angular velocity", angularVar_);
+  define("contact_count", NC_INT, -1, 1, "1", "number of contacts acting on the body", contactCountVar_);
+  define("max_contact_force", NC_DOUBLE, -1, 1, "N", "largest contact force magnitude on the body", maxForceVar_);
+  check(nc_enddef(ncid_), "finish the header");
+
+  std::vector<std::int32_t> ids(n);
+  std::vector<char> names(n * nameLength, '\0');
+  for (std::size_t i = 0; i < n; ++i) {
+    ids[i] = bodies[i].id;
+    std::copy(bodies[i].name.begin(), bodies[i].name.end(), names.begin() + static_cast<std::ptrdiff_t>(i * nameLength));
+  }
+  check(nc_put_var_int(ncid_, idVar, ids.data()), "write body_id");
+  check(nc_put_var_text(ncid_, nameVar, names.data()), "write body_name");
+}
+
+BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<SeriesBody>& bodies)
+    : settings_(std::move(settings)) {
+  if (bodies.empty()) {
+    throw std::logic_error("BodySeriesFile: no bodies");
+  }
+  settings_.syncEvery = std::max<std::size_t>(1, settings_.syncEvery);
+  const auto& path = settings_.path;
+  const auto folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) {
+    core::failInput(path.string(), "cannot create the folder '{}' ({}); choose a writable output folder",
+                    folder.string(), ec.message());
+  }
+  ids_.reserve(bodies.size());
+  for (const auto& b : bodies) {
+    ids_.push_back(b.id);
+  }
+
+  std::string history = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}: {}", fmt::gmtime(std::time(nullptr)),
+                                    settings_.history.empty() ? std::string("armour") : settings_.history);
+
+  // Resume: read what the old file holds before it is replaced.
+  ReadOnlyFile old;
+  std::size_t keep = 0;
+  if (settings_.resumeTime && std::filesystem::exists(path)) {
+    check(nc_open(path.c_str(), NC_NOWRITE, &old.ncid), "open the file to resume it");
+    int bodyDim = -1, strDim = -1, timeVar = -1, nameVar = -1, idVar = -1;
+    if (nc_inq_dimid(old.ncid, "body", &bodyDim) != NC_NOERR || nc_inq_dimid(old.ncid, "name_strlen", &strDim) != NC_NOERR ||
+        nc_inq_varid(old.ncid, "time", &timeVar) != NC_NOERR || nc_inq_varid(old.ncid, "body_name", &nameVar) != NC_NOERR ||
+        nc_inq_varid(old.ncid, "body_id", &idVar) != NC_NOERR) {
+      core::failInput(path.string(), "is not an armour body series file, so the run cannot be resumed from it; "
+                                     "move it away or choose another output folder");
+    }
+    std::size_t oldBodies = 0, oldStrlen = 0, oldRecords = 0;
+    int timeDim = -1;
+    check(nc_inq_dimlen(old.ncid, bodyDim, &oldBodies), "read the body dimension");
+    check(nc_inq_dimlen(old.ncid, strDim, &oldStrlen), "read the name_strlen dimension");
+    check(nc_inq_vardimid(old.ncid, timeVar, &timeDim), "read the time dimension");
+    check(nc_inq_dimlen(old.ncid, timeDim, &oldRecords), "read the time dimension");
+    std::vector<char> names(oldBodies * oldStrlen);
+    std::vector<std::int32_t> ids(oldBodies);
+    if (oldBodies > 0) {
+      check(nc_get_var_text(old.ncid, nameVar, names.data()), "read body_name");
+      check(nc_get_var_int(old.ncid, idVar, ids.data()), "read body_id");
+    }
+    for (std::size_t i = 0; i < std::max(oldBodies, bodies.size()); ++i) {
+      std::string oldName;
+      if (i < oldBodies) {
+        const auto* start = names.data() + i * oldStrlen;
+        oldName.assign(start, std::find(start, start + oldStrlen, '\0'));
+      }
+      const bool same = i < oldBodies && i < bodies.size() && ids[i] == bodies[i].id && oldName == bodies[i].name;
+      if (!same) {
+        core::failInput(path.string(),
+                        "lists {} bodies, the scene {}; body {} differs (file: '{}', scene: '{}'): the scene changed "
+                        "since the run started. Resume with the original scene, or start a new run",
+                        oldBodies, bodies.size(), i, oldName, i < bodies.size() ? bodies[i].name : std::string());
+      }
+    }
+    std::vector<double> times(oldRecords);
+    if (oldRecords > 0) {
+      check(nc_get_var_double(old.ncid, timeVar, times.data()), "read time");
+    }
+    // Records are in increasing time; a record cut short by a kill has the (huge) fill value as
+    // its time, so it is dropped here like any record after the resume time.
+    while (keep < oldRecords && times[keep] <= *settings_.resumeTime && (keep == 0 || times[keep] > times[keep - 1])) {
+      ++keep;
+    }
+    if (keep > 0) {
+      lastTime_ = times[keep - 1];
+    }
+    const auto oldHistory = readTextAttribute(old.ncid, NC_GLOBAL, "history");
+    if (!oldHistory.empty()) {
+      history = oldHistory + "\n" + history + fmt::format(" (resumed at t = {} s)", *settings_.resumeTime);
+    }
+    core::logger("io")->info("{}: resuming at t = {} s: keeping {} of {} records", path.string(),
+                             *settings_.resumeTime, keep, oldRecords);
+  } else if (settings_.resumeTime) {
+    core::logger("io")->warn("{}: no file to resume; starting a new one at t = {} s", path.string(),
+                             *settings_.resumeTime);
+  }
+
+  const auto tmp = core::temporarySibling(path);
+  try {
+    create(tmp, bodies, history);
+    // Rebuild rather than reopen: the records after the resume time cannot be removed from an
+    // HDF5 file in place, and a file that says exactly what happened is worth one copy per restart.
+    for (const char* name : kRecordVariables) {
+      if (keep == 0) {
+        break;
+      }
+      int from = -1, to = -1, ndims = 0;
+      if (nc_inq_varid(old.ncid, name, &from) != NC_NOERR) {
+        core::failInput(path.string(), "has no variable '{}', so the run cannot be resumed from it; move it away",
+                        name);
+      }
+      check(nc_inq_varid(ncid_, name, &to), "find a variable");
+      check(nc_inq_varndims(ncid_, to, &ndims), "read a variable's shape");
+      int oldNdims = 0;
+      nc_type oldType = NC_NAT, type = NC_NAT;
+      check(nc_inq_varndims(old.ncid, from, &oldNdims), "read a variable's shape");
+      check(nc_inq_vartype(old.ncid, from, &oldType), "read a variable's type");
+      check(nc_inq_vartype(ncid_, to, &type), "read a variable's type");
+      std::array<int, NC_MAX_VAR_DIMS> dims{};
+      check(nc_inq_vardimid(ncid_, to, dims.data()), "read a variable's shape");
+      std::array<std::size_t, 3> count{1, 1, 1};
+      std::size_t recordValues = 1;
+      for (int d = 1; d < ndims; ++d) {
+        check(nc_inq_dimlen(ncid_, dims[static_cast<std::size_t>(d)], &count[static_cast<std::size_t>(d)]),
+              "read a dimension");
+        recordValues *= count[static_cast<std::size_t>(d)];
+      }
+      std::size_t valueBytes = 0;
+      check(nc_inq_type(ncid_, type, nullptr, &valueBytes), "read a type");
+      if (oldNdims != ndims || oldType != type) {
+        core::failInput(path.string(), "variable '{}' has another shape or type than this version writes; "
+                                       "the run cannot be resumed from it",
+                        name);
+      }
+      const std::size_t block = std::max<std::size_t>(1, kCopyBytes / (recordValues * valueBytes));
+      std::vector<unsigned char> buffer(std::min(block, keep) * recordValues * valueBytes);
+      for (std::size_t first = 0; first < keep; first += block) {
+        std::array<std::size_t, 3> start{first, 0, 0};
+        count[0] = std::min(block, keep - first);
+        check(nc_get_vara(old.ncid, from, start.data(), count.data(), buffer.data()), "read the records to keep");
+        check(nc_put_vara(ncid_, to, start.data(), count.data(), buffer.data()), "copy the records to keep");
+      }
+    }
+    records_ = keep;
+    check(nc_sync(ncid_), "flush the file");
+    if (old.ncid >= 0) {
+      nc_close(old.ncid);
+      old.ncid = -1;
+    }
+    // The file is complete (header, bodies, kept records): put it in place now, still open, so
+    // that a killed run leaves it at the path the user expects, not under a temporary name.
+    core::commitAtomicFile(tmp, path);
+  } catch (...) {
+    if (ncid_ >= 0) {
+      nc_close(ncid_);
+      ncid_ = -1;
+    }
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+  const std::size_t n = bodies.size();
+  vec_.resize(3 * n);
+  quat_.resize(4 * n);
+  ints_.resize(n);
+  scalars_.resize(n);
+}
+
+BodySeriesFile::~BodySeriesFile() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    core::logger("io")->error("{}", e.what());
+  }
+}
+
+void BodySeriesFile::append(const BodyFrame& frame) {
+  if (ncid_ < 0) {
+    throw std::logic_error("BodySeriesFile::append after close");
+  }
+  const std::size_t n = ids_.size();
+  if (frame.bodies.size() != n) {
+    throw std::logic_error(fmt::format("BodySeriesFile::append: {} bodies, the file has {}", frame.bodies.size(), n));
+  }
+  if (records_ > 0 && !(frame.time > lastTime_)) {
+    throw std::logic_error(fmt::format("BodySeriesFile::append: time {} s does not follow {} s", frame.time, lastTime_));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (frame.bodies[i].id != ids_[i]) {
+      throw std::logic_error(
+          fmt::format("BodySeriesFile::append: body {} has id {}, the file {}", i, frame.bodies[i].id, ids_[i]));
+    }
+  }
+
+  const std::array<std::size_t, 3> start{records_, 0, 0};
+  const std::array<std::size_t, 3> vecCount{1, n, 3};
+  const auto putVec = [&](int var, auto member) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const geometry::Vec3& v = frame.bodies[i].*member;
+      vec_[3 * i] = v.x();
+      vec_[3 * i + 1] = v.y();
+      vec_[3 * i + 2] = v.z();
+    }
+    check(nc_put_vara_double(ncid_, var, start.data(), vecCount.data(), vec_.data()), "write a record");
+  };
+  putVec(positionVar_, &BodySnapshot::position);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& q = frame.bodies[i].orientation;
+    quat_[4 * i] = q.w();
+    quat_[4 * i + 1] = q.x();
+    quat_[4 * i + 2] = q.y();
+    quat_[4 * i + 3] = q.z();
+  }
+  const std::array<std::size_t, 3> quatCount{1, n, 4};
+  check(nc_put_vara_double(ncid_, orientationVar_, start.data(), quatCount.data(), quat_.data()), "write a record");
+  putVec(velocityVar_, &BodySnapshot::velocity);
+  putVec(angularVar_, &BodySnapshot::angularVelocity);
+  for (std::size_t i = 0; i < n; ++i) {
+    ints_[i] = frame.bodies[i].contactCount;
+    scalars_[i] = frame.bodies[i].maxContactForce;
+  }
+  check(nc_put_vara_int(ncid_, contactCountVar_, start.data(), vecCount.data(), ints_.data()), "write a record");
+  check(nc_put_vara_double(ncid_, maxForceVar_, start.data(), vecCount.data(), scalars_.data()), "write a record");
+  check(nc_put_vara_double(ncid_, timeVar_, start.data(), vecCount.data(), &frame.time), "write a record");
+  ++records_;
+  lastTime_ = frame.time;
+  if (++sinceSync_ >= settings_.syncEvery) {
+    check(nc_sync(ncid_), "flush the file");
+    sinceSync_ = 0;
+  }
+}
+
+void BodySeriesFile::close() {
+  if (ncid_ < 0) {
+    return;
+  }
+  const int status = nc_close(ncid_);
+  ncid_ = -1;
+  check(status, "close the file");
+}
+
+} // namespace armour::io

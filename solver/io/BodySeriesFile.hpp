@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file BodySeriesFile.hpp
+/// The per-body time series of a run (bodies.nc): netCDF-4, CF-1.8, one record per output time.
+/// Also the plain `BodyFrame` the solver fills at each output time, shared with VtkFrameWriter:
+/// the writers never see the World, only this snapshot.
+///
+/// File layout (docs/output-files.md): dimensions time (unlimited), body, vec = 3, quat = 4,
+/// name_strlen; variables time, body_id, body_name, position, orientation, velocity,
+/// angular_velocity, contact_count, max_contact_force. Axes: x onshore, y along the trunk, z up.
+///
+/// Crash safety: the file is created under a temporary name, given its header and body table,
+/// flushed, and only then renamed into place, so the path never holds a half-made header. It then
+/// grows in place and is flushed (nc_sync) every `syncEvery` records: a killed run leaves a
+/// readable file with at least every record up to the last flush.
+///
+/// Not thread-safe (nor is the netCDF-C library): use from one thread.
+
+#include "geometry/TriangleMesh.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace armour::io {
+
+/// One body at one output time. World frame, SI units.
+struct BodySnapshot {
+  std::int32_t id = 0;                                         ///< stable body id (unit: -)
+  geometry::Vec3 position = geometry::Vec3::Zero();            ///< centre of mass (unit: m)
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity(); ///< unit, body to world (unit: -)
+  geometry::Vec3 velocity = geometry::Vec3::Zero();            ///< centre-of-mass velocity (unit: m/s)
+  geometry::Vec3 angularVelocity = geometry::Vec3::Zero();     ///< world frame (unit: rad/s)
+  std::int32_t contactCount = 0;                               ///< contacts acting on the body (unit: -)
+  double maxContactForce = 0.0;                                ///< largest contact force magnitude (unit: N)
+  /// For VtkFrameWriter only: the shape's surface in the body frame (centre of mass at the
+  /// origin, principal or shape axes as the solver uses them). Not owned; must outlive the call
+  /// that receives the frame. nullptr: the body is left out of the VTK frame.
+  const geometry::TriangleMesh* surface = nullptr;
+  double scale = 1.0;                                          ///< uniform scale of `surface` (unit: -)
+};
+
+/// All bodies at one output time. BodySeriesFile wants the same bodies in the same order every
+/// time; VtkFrameWriter accepts any set (bodies may appear, e.g. during placement).
+struct BodyFrame {
+  double time = 0.0;                 ///< simulated time (unit: s)
+  std::vector<BodySnapshot> bodies;
+};
+
+/// The body table, written once.
+struct SeriesBody {
+  std::int32_t id = 0; ///< matches BodySnapshot::id (unit: -)
+  std::string name;    ///< e.g. "unit_0042"; ASCII, any length
+};
+
+struct BodySeriesSettings {
+  std::filesystem::path path;        ///< the file, e.g. "<output>/bodies.nc"; its folder is created
+  std::string title = "armour body time series"; ///< global attribute `title`
+  std::string history;               ///< the command line; recorded, with the UTC time, in `history`
+  /// Continue a run: keep the existing file's records with time <= *resumeTime and append after
+  /// them (the later ones belonged to the abandoned run after the checkpoint). No file: start anew.
+  std::optional<double> resumeTime;  ///< (unit: s)
+  std::size_t syncEvery = 16;        ///< records between flushes to disk (unit: records); >= 1
+  std::size_t chunkRecords = 64;     ///< records per HDF5 chunk, reduced for very many bodies (unit: records)
+  int deflateLevel = 2;              ///< zlib level 1-9 of the data variables (unit: -); 0 = none
+};
+
+/// Writer of bodies.nc.
+///
+/// @code
+///   BodySeriesSettings settings;
+///   settings.path = out / "bodies.nc";
+///   settings.history = commandLine;
+///   BodySeriesFile series(settings, bodies);
+///   series.append(frame);  // every series interval
+///   series.close();        // or let the destructor do it
+/// @endcode
+class BodySeriesFile {
+public:
+  /// Create the file (or, with settings.resumeTime, reopen it and drop the records after that
+  /// time). Throws core::InputError naming the path (and netCDF's message) if the file cannot be
+  /// created, or, on resume, if the existing file is not ours or lists other bodies.
+  BodySeriesFile(BodySeriesSettings settings, const std::vector<SeriesBody>& bodies);
+  /// Closes the file if close() was not called (errors are logged, not thrown).
+  ~BodySeriesFile();
+  BodySeriesFile(const BodySeriesFile&) = delete;
+  BodySeriesFile& operator=(const BodySeriesFile&) = delete;
+
+  /// Append one record.
+  /// @pre frame.bodies lists the constructor's bodies in the same order (ids are checked) and
+  ///      frame.time is greater than the previous record's; std::logic_error otherwise.
+  /// Throws core::InputError naming the file if netCDF cannot write (disk full, ...).
+  void append(const BodyFrame& frame);
+
+  /// Flush and close. Afterwards append() throws std::logic_error. Idempotent.
+  void close();
+
+  /// Records in the file, including those kept on resume.
+  [[nodiscard]] std::size_t recordCount() const { return records_; }
+  [[nodiscard]] const std::filesystem::path& path() const { return settings_.path; }
+
+private:
+  void check(int status, const char* what) const;
+  void create(const std::filesystem::path& file, const std::vector<SeriesBody>& bodies, const std::string& history);
+
+  BodySeriesSettings settings_;
+  std::vector<std::int32_t> ids_;
+  int ncid_ = -1;
+  std::size_t records_ = 0;
+  std::size_t sinceSync_ = 0;
+  double lastTime_ = 0.0;
+  // Variable ids.
+  int timeVar_ = -1, positionVar_ = -1, orientationVar_ = -1, velocityVar_ = -1, angularVar_ = -1,
+      contactCountVar_ = -1, maxForceVar_ = -1;
+  // Staging buffers, reused by append() (hot: one record per series interval).
+  std::vector<double> vec_, quat_;
+  std::vector<std::int32_t> ints_;
+  std::vector<double> scalars_;
+};
+
+} // namespace armour::io

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# `armour check` and `armour run` end to end: check builds good scenes and prints the time step
+# (exit 0); broken scenes exit 2 naming the file; a short run writes run.log (build line first,
+# then the resolved settings, the summary) and final_state.csv with one row per body.
+set -euo pipefail
+armour="$1"
+scenes="$2"
+out="$3"
+rm -rf "$out" && mkdir -p "$out"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# Good scenes: exit 0, the resolved settings, the counts and the time step.
+for scene in block-on-slope dolos-pile run-smoke; do
+  set +e; msg=$("$armour" --log-level warn check "$scenes/$scene.yaml" 2>&1); code=$?; set -e
+  [ $code -eq 0 ] || fail "check $scene.yaml exited $code: $msg"
+  echo "$msg" | grep -q "^time step: [0-9.e+-]* s (auto: 0.2 x the stable step)" || fail "no time step in: $msg"
+  echo "$msg" | grep -q "^stable time step: [0-9.e+-]* s" || fail "no stable time step in: $msg"
+  echo "$msg" | grep -q "^check: .*$scene.yaml is valid" || fail "no verdict in: $msg"
+done
+msg=$("$armour" --log-level warn check "$scenes/dolos-pile.yaml" 2>&1)
+echo "$msg" | grep -q "^bodies: 12 (12 dynamic, 0 fixed)" || fail "dolos-pile: expected 12 bodies in: $msg"
+echo "$msg" | grep -q "^static pieces: 228 (4 half-spaces, 224 convex pieces, 0 fixed meshes)" \
+  || fail "dolos-pile: expected 4 walls and 224 height-field pieces in: $msg"
+echo "$msg" | grep -q "^  time_step = auto" || fail "dolos-pile: describeScene missing from: $msg"
+
+# Broken scenes: exit 2, the file named in the message.
+for scene in "$scenes"/broken/*.yaml; do
+  name=$(basename "$scene")
+  set +e; msg=$("$armour" --log-level off check "$scene" 2>&1); code=$?; set -e
+  [ $code -eq 2 ] || fail "check $name: expected exit 2, got $code: $msg"
+  echo "$msg" | grep -q "error: .*$name" || fail "check $name: the file is not named in: $msg"
+done
+# A fixed time step above the stability limit is a user error too.
+sed 's/^time_step: auto .*/time_step: 0.01/' "$scenes/block-on-slope.yaml" > "$out/long-step.yaml"
+set +e; msg=$("$armour" --log-level off check "$out/long-step.yaml" 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "a 10 ms time step was accepted (exit $code): $msg"
+echo "$msg" | grep -q "long-step.yaml: time_step: .*stability limit" || fail "time-step error unclear: $msg"
+
+# A run: the smoke scene (two cubes dropped on a floor, 0.3 s), written to --output.
+set +e; log=$("$armour" run "$scenes/run-smoke.yaml" --threads 1 -o "$out/smoke" 2>&1); code=$?; set -e
+[ $code -eq 0 ] || fail "run exited $code: $log"
+[ -f "$out/smoke/run.log" ] || fail "no run.log"
+head -n 1 "$out/smoke/run.log" | grep -q "armour [0-9.]* (git .*, 1 threads)" \
+  || fail "run.log does not start with the build line (1 thread): $(head -n 1 "$out/smoke/run.log")"
+grep -q "  duration = 0.3 s" "$out/smoke/run.log" || fail "resolved settings missing from run.log"
+grep -Eq "finished: t = 0\.(3|2999[0-9]*) s" "$out/smoke/run.log" || fail "no summary in run.log"
+grep -q "final kinetic energy" "$out/smoke/run.log" || fail "no final kinetic energy in run.log"
+[ -f "$out/smoke/final_state.csv" ] || fail "no final_state.csv"
+[ "$(head -n 1 "$out/smoke/final_state.csv")" = "body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz" ] || fail "bad CSV header"
+[ "$(wc -l < "$out/smoke/final_state.csv")" -eq 3 ] || fail "final_state.csv: expected a header and 2 rows"
+# At 0.3 s both cubes have landed: centroids within 1 cm of z = 0.5 m.
+awk -F, 'NR > 1 { d = $5 - 0.5; if (d < 0) d = -d; if (d > 0.01) exit 1 }' "$out/smoke/final_state.csv" \
+  || fail "cubes not on the floor at 0.3 s: $(cat "$out/smoke/final_state.csv")"
+
+# --duration overrides the scene's.
+"$armour" --log-level warn run "$scenes/run-smoke.yaml" --duration 0.05 -o "$out/short" 2>/dev/null
+# Free fall for 0.05 s: the low cube (from z = 0.6 m) is at 0.6 - g t^2 / 2 = 0.5877 m.
+awk -F, 'NR == 2 { d = $5 - 0.58774; if (d < 0) d = -d; if (d > 1e-3) exit 1 }' "$out/short/final_state.csv" \
+  || fail "--duration 0.05: the low cube should be in free fall at z = 0.5877 m: $(cat "$out/short/final_state.csv")"
+set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration -1 -o "$out/x" 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "--duration -1 accepted (exit $code): $msg"
+set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration 0 -o "$out/x" 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "--duration 0 accepted (exit $code): $msg"
+
+# Bodies that start inside each other trip the overlap guard rail: exit 3, the bodies named, the
+# state at the stop written.
+cat > "$out/overlap.yaml" <<'EOF'
+duration: 0.1
+materials: {concrete: {density: 2400, friction: 0.75, restitution: 0.05}}
+bodies:
+  - {name: a, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.5]}
+  - {name: b, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.9]}
+static:
+  - {type: plane, material: concrete}
+EOF
+set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" -o "$out/overlap" 2>&1); code=$?; set -e
+[ $code -eq 3 ] || fail "overlapping start: expected exit 3, got $code: $msg"
+echo "$msg" | grep -q "overlap.yaml: the simulation stopped: .*body 'a' and body 'b' overlap" \
+  || fail "overlapping start: unclear message: $msg"
+[ "$(wc -l < "$out/overlap/state_at_error.csv")" -eq 3 ] || fail "no state_at_error.csv with 2 rows"
+echo "run CLI: all checks passed"
