@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "core/Log.hpp"
 #include "io/SceneReader.hpp"
+#include "simulation/RunOutputs.hpp"
 #include "simulation/SceneBuilder.hpp"
 
 #include <fmt/format.h>
@@ -123,7 +124,9 @@ void runScene(const RunOptions& o) {
   simulation::BuiltScene built = simulation::buildWorld(scene);
   logLines(log, simulation::describeBuild(scene, built));
   log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
-  log->info("outputs: {} (VTK and netCDF writers are not connected yet)", (scene.output.folder / "final_state.csv").string());
+  simulation::RunOutputs outputs(scene, built, "armour run " + o.scene);
+  log->info("outputs in {}: bodies.pvd (VTK every {} s), bodies.nc (series every {} s), final_state.csv",
+            scene.output.folder.string(), scene.output.vtkInterval, scene.output.seriesInterval);
 
   simulation::World& world = *built.world;
   const double dt = world.timeStep();
@@ -134,8 +137,10 @@ void runScene(const RunOptions& o) {
   const auto wallSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   try {
     // Same end test as World::advanceTo: the last step lands within half a step of the end.
+    outputs.update(world);
     while (world.time() < end - 0.5 * dt) {
       world.step();
+      outputs.update(world);
       maxOverlap = std::max(maxOverlap, world.lastStep().maxOverlap);
       if (wallSince(lastReport) >= kProgressSeconds) {
         lastReport = Clock::now();
@@ -158,6 +163,7 @@ void runScene(const RunOptions& o) {
                              scene.sourceName, e.what(), state.string(), runLog.string());
     throw CLI::RuntimeError(3);
   }
+  outputs.finish(world);
   const double wall = wallSince(start);
   const fs::path finalState = scene.output.folder / "final_state.csv";
   writeStateCsv(finalState, scene, built);
@@ -165,7 +171,8 @@ void runScene(const RunOptions& o) {
             world.stepCount(), dt, wall, static_cast<double>(world.stepCount()) / std::max(wall, 1e-9));
   log->info("final kinetic energy {:.6g} J; deepest overlap seen {:.4g} m", world.bodies().totalKineticEnergy(),
             maxOverlap);
-  log->info("wrote {}", finalState.string());
+  log->info("wrote {} VTK frames, {} series records and {}", outputs.vtkFrames(), outputs.seriesRecords(),
+            finalState.string());
   log->flush();
 }
 

@@ -6,16 +6,25 @@
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
+#include <algorithm>
 #include <mutex>
 #include <vector>
 
 namespace armour::core {
 namespace {
 
+/// The console shows what --log-level asks for; a run-log file always keeps at least the info
+/// lines (build line, settings, progress), so loggers pass the lower of the two levels and each
+/// sink filters for itself.
 struct LogRegistry {
   std::mutex mutex;
-  std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
-  spdlog::level::level_enum level = spdlog::level::info;
+  spdlog::sink_ptr console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  std::vector<spdlog::sink_ptr> sinks{console};
+  spdlog::level::level_enum level = spdlog::level::info; ///< console level
+  bool hasFile = false;
+  [[nodiscard]] spdlog::level::level_enum loggerLevel() const {
+    return hasFile ? std::min(level, spdlog::level::info) : level;
+  }
 };
 
 LogRegistry& registry() {
@@ -32,7 +41,7 @@ std::shared_ptr<spdlog::logger> logger(const std::string& module) {
     return existing;
   }
   auto created = std::make_shared<spdlog::logger>(module, r.sinks.begin(), r.sinks.end());
-  created->set_level(r.level);
+  created->set_level(r.loggerLevel());
   created->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%n] [%l] %v");
   spdlog::register_logger(created);
   return created;
@@ -47,8 +56,14 @@ void addLogFile(const std::string& path) {
   } catch (const spdlog::spdlog_ex& e) {
     failInput(path, "cannot open the run log for writing ({}); choose a writable output folder", e.what());
   }
+  sink->set_level(std::min(r.level, spdlog::level::info));
   r.sinks.push_back(sink);
-  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) { l->sinks().push_back(sink); });
+  r.hasFile = true;
+  const auto level = r.loggerLevel();
+  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) {
+    l->sinks().push_back(sink);
+    l->set_level(level);
+  });
 }
 
 void setLogLevel(const std::string& level) {
@@ -59,7 +74,9 @@ void setLogLevel(const std::string& level) {
   }
   std::lock_guard lock(r.mutex);
   r.level = parsed;
-  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) { l->set_level(parsed); });
+  r.console->set_level(parsed);
+  const auto loggerLevel = r.loggerLevel();
+  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) { l->set_level(loggerLevel); });
 }
 
 } // namespace armour::core

@@ -108,6 +108,7 @@ struct World::PairWork {
   Vec3 forceA = Vec3::Zero(), torqueA = Vec3::Zero();
   Vec3 forceB = Vec3::Zero(), torqueB = Vec3::Zero();
   History history;
+  double maxPointForce = 0.0;
   double maxOverlap = 0.0;
 };
 
@@ -500,6 +501,7 @@ void World::computeForces(double dt) {
       const contact::PointHistory* prev = findHistory(previous, e.key);
       const contact::PointForce f = contact::evaluatePointContact(params, {e.normal, e.depth, e.area, vRel},
                                                                   prev ? *prev : contact::PointHistory{}, beta, dt);
+      pw.maxPointForce = std::max(pw.maxPointForce, f.force.norm());
       pw.forceA += f.force;
       pw.torqueA += (e.point - xA).cross(f.force);
       if (!plane) {
@@ -514,6 +516,8 @@ void World::computeForces(double dt) {
   // Serial, ordered accumulation: bit-identical for any thread count.
   stats_ = {};
   stats_.candidatePairs = work.size();
+  contactCount_.assign(nBodies, 0);
+  maxContactForce_.assign(nBodies, 0.0);
   std::map<contact::BodyPair, History> nextHistory;
   for (auto& pw : work) {
     if (pw.history.empty()) {
@@ -524,9 +528,14 @@ void World::computeForces(double dt) {
     auto torques = bodies_.torques();
     forces[a] += pw.forceA;
     torques[a] += pw.torqueA;
+    const auto points = static_cast<std::int32_t>(pw.history.size());
+    contactCount_[a] += points;
+    maxContactForce_[a] = std::max(maxContactForce_[a], pw.maxPointForce);
     if ((pw.key.second & kStaticBits) == 0) {
       forces[pw.key.second] += pw.forceB;
       torques[pw.key.second] += pw.torqueB;
+      contactCount_[pw.key.second] += points;
+      maxContactForce_[pw.key.second] = std::max(maxContactForce_[pw.key.second], pw.maxPointForce);
     }
     stats_.contactPoints += pw.history.size();
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);

@@ -180,6 +180,10 @@ public:
   [[nodiscard]] double bodyScale(BodyId b) const { return bodyScale_[b]; }
   [[nodiscard]] const Quat& bodyNaturalToBody(BodyId b) const { return shapes_[bodyShape_[b]]->naturalToBody; }
   [[nodiscard]] const StepStatistics& lastStep() const { return stats_; }
+  /// Engaged sample points on body b in the last force evaluation (unit: -).
+  [[nodiscard]] std::int32_t contactCount(BodyId b) const { return b < contactCount_.size() ? contactCount_[b] : 0; }
+  /// Largest single-point contact force on body b in the last force evaluation (unit: N).
+  [[nodiscard]] double maxContactForce(BodyId b) const { return b < maxContactForce_.size() ? maxContactForce_[b] : 0.0; }
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
   /// Orientation of the body's natural shape frame in the world (what the user gave).
   [[nodiscard]] Quat naturalOrientation(BodyId b) const;
@@ -205,6 +209,8 @@ private:
   std::vector<double> bodyScale_;
   std::vector<MaterialId> bodyMaterial_;
   std::vector<double> restTime_; ///< how long each body has been at rest (unit: s)
+  std::vector<std::int32_t> contactCount_; ///< engaged points per body, last force evaluation
+  std::vector<double> maxContactForce_;    ///< largest point force per body (unit: N)
   std::vector<geometry::Box3> boxes_;
   std::vector<std::uint8_t> active_;
   contact::BroadPhase broadPhase_;

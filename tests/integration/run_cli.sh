@@ -46,6 +46,14 @@ grep -q "  duration = 0.3 s" "$out/smoke/run.log" || fail "resolved settings mis
 grep -Eq "finished: t = 0\.(3|2999[0-9]*) s" "$out/smoke/run.log" || fail "no summary in run.log"
 grep -q "final kinetic energy" "$out/smoke/run.log" || fail "no final kinetic energy in run.log"
 [ -f "$out/smoke/final_state.csv" ] || fail "no final_state.csv"
+# ParaView series: frames at 0, 0.1, 0.2 and 0.3 s (vtk_interval 0.1 s), all listed in bodies.pvd.
+[ "$(grep -c '<DataSet' "$out/smoke/bodies.pvd")" -eq 4 ] || fail "bodies.pvd should list 4 frames: $(cat "$out/smoke/bodies.pvd")"
+for f in $(grep -o 'file="[^"]*"' "$out/smoke/bodies.pvd" | cut -d'"' -f2); do
+  [ -f "$out/smoke/$f" ] || fail "bodies.pvd lists $f, which does not exist"
+done
+# netCDF series: HDF5 signature, and 31 records at 0.01 s over 0.3 s (checked in the run log).
+head -c 4 "$out/smoke/bodies.nc" | grep -q "HDF" || fail "bodies.nc is not a netCDF-4 (HDF5) file"
+grep -q "wrote 4 VTK frames, 31 series records" "$out/smoke/run.log" || fail "output counts missing from run.log"
 [ "$(head -n 1 "$out/smoke/final_state.csv")" = "body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz" ] || fail "bad CSV header"
 [ "$(wc -l < "$out/smoke/final_state.csv")" -eq 3 ] || fail "final_state.csv: expected a header and 2 rows"
 # At 0.3 s both cubes have landed: centroids within 1 cm of z = 0.5 m.
