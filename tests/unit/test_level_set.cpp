@@ -8,6 +8,8 @@
 #include "geometry/SurfaceRefinement.hpp"
 #include "support/TestMeshes.hpp"
 
+#include "support/ShapeCache.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,18 +31,8 @@ namespace {
 using geometry::Mat3;
 using geometry::ShapeRequest;
 
-/// makeShape(name) at V = 1 m^3 (Dn = 1 m), built once per test program (the OCC builds take
-/// about 0.1 s each).
-const TriangleMesh& shape(const std::string& name) {
-  static std::map<std::string, TriangleMesh> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    ShapeRequest request;
-    request.volume = 1.0;
-    it = cache.emplace(name, geometry::makeShape(name, request)).first;
-  }
-  return it->second;
-}
+/// makeShape(name) at V = 1 m^3 (Dn = 1 m), built once per test program.
+const TriangleMesh& shape(const std::string& name) { return test::unitShape(name); }
 
 /// Default-resolution level set of shape(name), built once.
 const LevelSet& shapeLevelSet(const std::string& name) {

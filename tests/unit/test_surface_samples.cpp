@@ -6,6 +6,8 @@
 #include "core/Error.hpp"
 #include "geometry/ShapeLibrary.hpp"
 
+#include "support/ShapeCache.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,16 +27,7 @@ using geometry::TriangleMesh;
 using geometry::Vec3;
 
 /// makeShape(name) at V = 1 m^3 (Dn = 1 m), built once per test program.
-const TriangleMesh& shape(const std::string& name) {
-  static std::map<std::string, TriangleMesh> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    ShapeRequest request;
-    request.volume = 1.0;
-    it = cache.emplace(name, geometry::makeShape(name, request)).first;
-  }
-  return it->second;
-}
+const TriangleMesh& shape(const std::string& name) { return test::unitShape(name); }
 
 /// Default samples of shape(name), built once.
 const SurfaceSamples& shapeSamples(const std::string& name) {
