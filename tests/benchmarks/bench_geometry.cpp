@@ -9,9 +9,18 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+
 using namespace armour::geometry;
 
 namespace {
+
+/// A benchmark of a wrong result is worthless: stop the run with the reason.
+void failUnless(benchmark::State& state, bool ok, const char* what) {
+  if (!ok) {
+    state.SkipWithError(what);
+  }
+}
 
 void BM_MakeShape(benchmark::State& state, const std::string& name) {
   ShapeRequest request;
@@ -23,6 +32,8 @@ void BM_MakeShape(benchmark::State& state, const std::string& name) {
     benchmark::DoNotOptimize(mesh.vertices.data());
   }
   state.counters["triangles"] = static_cast<double>(triangles);
+  failUnless(state, std::abs(computeMassProperties(makeShape(name, request)).volume - 5.0) < 1e-9 * 5.0,
+             "makeShape missed the requested volume");
 }
 
 void BM_MassProperties(benchmark::State& state) {
@@ -60,6 +71,7 @@ void BM_Tetrahedralize(benchmark::State& state) {
   for (auto _ : state) {
     TetMesh mesh = tetrahedralize(surface, options);
     tets = mesh.tets.size();
+    failUnless(state, std::abs(mesh.totalVolume() - 5.0) < 5e-3 * 5.0, "tet volumes do not add up to the surface volume");
   }
   state.counters["tets"] = static_cast<double>(tets);
 }
