@@ -14,6 +14,7 @@
 ///
 /// Method and error bounds: docs/theory.md, "Level sets and surface samples".
 
+#include "geometry/ClosestPoint.hpp"
 #include "geometry/TriangleMesh.hpp"
 
 #include <array>
@@ -28,8 +29,7 @@ using geometry::Box3;
 using geometry::TriangleMesh;
 using geometry::Vec3;
 
-/// The part of a triangle its closest point lies on (Voronoi region of the triangle).
-enum class TriangleFeature : std::uint8_t { Vertex0, Vertex1, Vertex2, Edge01, Edge12, Edge20, Face };
+using geometry::TriangleFeature;
 
 /// Closest point on a triangle mesh to a query point.
 struct ClosestPoint {

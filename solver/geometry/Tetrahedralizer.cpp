@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "geometry/Tetrahedralizer.hpp"
 
+#include "geometry/ClosestPoint.hpp"
+
 #include "core/Error.hpp"
 #include "geometry/GmshSession.hpp"
 #include "geometry/MassProperties.hpp"
@@ -66,45 +68,6 @@ std::string lastGmshError() {
   std::string error;
   gmsh::logger::getLastError(error);
   return error.empty() ? std::string("no message from gmsh") : error;
-}
-
-/// Squared distance from p to triangle (a, b, c): closest point by Voronoi regions of the
-/// triangle's vertices, edges and face (Ericson, Real-Time Collision Detection, 5.1.5).
-double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a;
-  const Vec3 ac = c - a;
-  const Vec3 ap = p - a;
-  const double d1 = ab.dot(ap);
-  const double d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) {
-    return ap.squaredNorm();
-  }
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp);
-  const double d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) {
-    return bp.squaredNorm();
-  }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-    return (p - (a + ab * (d1 / (d1 - d3)))).squaredNorm();
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp);
-  const double d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) {
-    return cp.squaredNorm();
-  }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-    return (p - (a + ac * (d2 / (d2 - d6)))).squaredNorm();
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).squaredNorm();
-  }
-  const double denominator = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denominator) + ac * (vc * denominator))).squaredNorm();
 }
 
 /// Crossings of lines parallel to x with the surface. Triangles are binned by their (y, z)

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace armour::simulation {
 namespace {
@@ -369,14 +370,17 @@ void World::computeForces(double dt) {
       // sample is inside when it is below all of them, at the depth of the nearest face.
       const bool isPlane = (pw.key.second & kPlaneBit) != 0;
       const std::uint32_t index = pw.key.second & ~kStaticBits;
-      std::vector<Vec3> normals;
-      std::vector<double> offsets;
+      // Views of the faces, no copies: this runs for every body-static pair every step.
+      std::span<const Vec3> normals;
+      std::span<const double> offsets;
+      double planeOffset = 0.0;
       MaterialId staticMaterial = 0;
       geometry::Box3 region; // where samples can be inside (world)
       if (isPlane) {
         const StaticPlane& pl = planes_[index];
-        normals = {pl.normal};
-        offsets = {pl.normal.dot(pl.point)};
+        planeOffset = pl.normal.dot(pl.point);
+        normals = std::span<const Vec3>(&pl.normal, 1);
+        offsets = std::span<const double>(&planeOffset, 1);
         staticMaterial = pl.material;
         region = boxes_[a];
       } else {

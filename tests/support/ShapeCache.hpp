@@ -22,4 +22,16 @@ inline const geometry::TriangleMesh& unitShape(const std::string& name) {
   return it->second;
 }
 
+/// Something built from a unit shape (a level set, surface samples) with its default settings,
+/// once per shape name and test program.
+template <typename T>
+const T& perUnitShape(const std::string& name) {
+  static std::map<std::string, T> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) {
+    it = cache.emplace(name, T(unitShape(name))).first;
+  }
+  return it->second;
+}
+
 } // namespace armour::test

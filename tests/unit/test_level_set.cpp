@@ -35,14 +35,7 @@ using geometry::ShapeRequest;
 const TriangleMesh& shape(const std::string& name) { return test::unitShape(name); }
 
 /// Default-resolution level set of shape(name), built once.
-const LevelSet& shapeLevelSet(const std::string& name) {
-  static std::map<std::string, LevelSet> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    it = cache.emplace(name, LevelSet(shape(name))).first;
-  }
-  return it->second;
-}
+const LevelSet& shapeLevelSet(const std::string& name) { return test::perUnitShape<LevelSet>(name); }
 
 /// Signed distance of the box [-a, a]^3 (exact closed form): outside, the length of the positive
 /// part of q = |x| - a; inside, the largest (least negative) component of q.

@@ -30,14 +30,7 @@ using geometry::Vec3;
 const TriangleMesh& shape(const std::string& name) { return test::unitShape(name); }
 
 /// Default samples of shape(name), built once.
-const SurfaceSamples& shapeSamples(const std::string& name) {
-  static std::map<std::string, SurfaceSamples> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    it = cache.emplace(name, SurfaceSamples(shape(name))).first;
-  }
-  return it->second;
-}
+const SurfaceSamples& shapeSamples(const std::string& name) { return test::perUnitShape<SurfaceSamples>(name); }
 
 /// Distance from x to the segment [a, b] and the parameter of the closest point.
 double segmentDistance(const Vec3& x, const Vec3& a, const Vec3& b, double& t) {
