@@ -278,6 +278,39 @@ LevelSet::LevelSet(const TriangleMesh& mesh, const LevelSetSettings& settings, c
                                  source, n_[0], n_[1], n_[2], h_, dn_ / h_, memoryBytes() / 1024.0, buildSeconds_);
 }
 
+double LevelSet::interpolateValue(const Vec3& x) const {
+  int cell[3];
+  double f[3];
+  for (int k = 0; k < 3; ++k) {
+    const double u = (x[k] - origin_[k]) * invH_;
+    const double top = n_[k] - 2;
+    const double clamped = u > 0.0 ? std::min(std::floor(u), top) : 0.0;
+    cell[k] = static_cast<int>(clamped);
+    f[k] = u - clamped;
+  }
+  const std::size_t sy = static_cast<std::size_t>(n_[0]);
+  const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
+  const float* v = values_.data() + static_cast<std::size_t>(cell[0]) + sy * static_cast<std::size_t>(cell[1]) +
+                   sz * static_cast<std::size_t>(cell[2]);
+  // Same arithmetic as interpolate(): the two agree bit for bit on phi.
+  const double v000 = v[0], v100 = v[1], v010 = v[sy], v110 = v[1 + sy];
+  const double v001 = v[sz], v101 = v[1 + sz], v011 = v[sy + sz], v111 = v[1 + sy + sz];
+  const double fx = f[0], fy = f[1], fz = f[2];
+  const double gy = 1.0 - fy, gz = 1.0 - fz;
+  const double c00 = v000 + fx * (v100 - v000);
+  const double c10 = v010 + fx * (v110 - v010);
+  const double c01 = v001 + fx * (v101 - v001);
+  const double c11 = v011 + fx * (v111 - v011);
+  return gz * (gy * c00 + fy * c10) + fz * (gy * c01 + fy * c11);
+}
+
+double LevelSet::value(const Vec3& local) const {
+  const Vec3 c = local.cwiseMax(gridBounds_.min).cwiseMin(gridBounds_.max);
+  const double phi = interpolateValue(c);
+  const double d2 = (local - c).squaredNorm();
+  return d2 > 0.0 ? phi + std::sqrt(d2) : phi;
+}
+
 void LevelSet::interpolate(const Vec3& x, double& phi, Vec3& gradient) const {
   int cell[3];
   double f[3];
@@ -355,7 +388,7 @@ LevelSetQuery LevelSet::query(const Vec3& local) const {
   return q;
 }
 
-double LevelSet::distance(const Vec3& local) const { return query(local).phi; }
+double LevelSet::distance(const Vec3& local) const { return value(local); }
 
 Vec3 LevelSet::gradient(const Vec3& local) const { return query(local).gradient; }
 

@@ -138,6 +138,9 @@ public:
 
   /// Interpolated signed distance at body-frame point `local` (unit: m).
   [[nodiscard]] double distance(const Vec3& local) const;
+  /// Same as distance(local): the value alone, without the gradient; equals query(local).phi
+  /// (the narrow phase tests this first and queries only the samples found inside).
+  [[nodiscard]] double value(const Vec3& local) const;
   /// Gradient of the interpolant at `local` (unit: -): the outward direction, not normalised.
   [[nodiscard]] Vec3 gradient(const Vec3& local) const;
   /// Unit outward direction at `local`, or zero at medial-axis points (see LevelSetQuery).
@@ -178,6 +181,8 @@ public:
 private:
   /// Interpolant and its gradient at a point inside the grid box.
   void interpolate(const Vec3& x, double& phi, Vec3& gradient) const;
+  /// The interpolant alone (no gradient): the cheap test most samples fail.
+  double interpolateValue(const Vec3& x) const;
 
   Vec3 origin_ = Vec3::Zero();
   double h_ = 0.0;

@@ -2,6 +2,7 @@
 #include "geometry/GmshSession.hpp"
 
 #include <gmsh.h>
+#include <omp.h>
 
 #include <mutex>
 #include <unordered_map>
@@ -28,6 +29,10 @@ void initialiseOnce() {
 
 struct GmshSession::Impl {
   std::unique_lock<std::mutex> lock{gmshMutex()};
+  /// gmsh sets the process's OpenMP thread count from its General.NumThreads option (1 by default)
+  /// when it initialises and meshes; the caller's count is put back when the session ends, or
+  /// every later parallel region of the solver would run on one thread.
+  int callerThreads = omp_get_max_threads();
 };
 
 GmshSession::GmshSession(const std::string& model) : impl_(std::make_unique<Impl>()) {
@@ -36,7 +41,10 @@ GmshSession::GmshSession(const std::string& model) : impl_(std::make_unique<Impl
   gmsh::model::add(model);
 }
 
-GmshSession::~GmshSession() { gmsh::clear(); }
+GmshSession::~GmshSession() {
+  gmsh::clear();
+  omp_set_num_threads(impl_->callerThreads);
+}
 
 std::vector<GmshEntity> GmshSession::fuse(const std::vector<GmshEntity>& objects,
                                           const std::vector<GmshEntity>& tools) {

@@ -21,10 +21,6 @@ constexpr std::uint32_t kConvexBit = 0x40000000u; ///< second pair index of a bo
 constexpr std::uint32_t kStaticBits = kPlaneBit | kConvexBit;
 constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A
 
-bool insideBox(const geometry::Box3& box, const Vec3& p) {
-  return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
-}
-
 /// One engaged sample point before the law is applied.
 struct Engaged {
   std::uint32_t key;  ///< direction bit | sample index
@@ -57,7 +53,7 @@ std::array<int, 3> bucketOf(const SampleBuckets& b, const Vec3& p) {
 /// Counting sort of the samples into buckets.
 void buildBuckets(ShapeModel& shape) {
   SampleBuckets& b = shape.buckets;
-  const geometry::Box3 box = shape.mesh.bounds();
+  const geometry::Box3 box = shape.bounds;
   b.origin = box.min;
   b.cell = (box.size() / kBuckets).cwiseMax(Vec3::Constant(1e-12));
   const auto& positions = shape.samples->positions();
@@ -76,15 +72,32 @@ void buildBuckets(ShapeModel& shape) {
   for (std::uint32_t i = 0; i < positions.size(); ++i) {
     b.samples[fill[cellOf[i]]++] = i;
   }
+  // A sphere around each bucket's samples: surface samples fill a thin patch of their bucket, so
+  // the sphere is the tighter bound for culling a whole bucket against another body's level set.
+  const int cells = kBuckets * kBuckets * kBuckets;
+  b.sphereCentre.assign(cells, Vec3::Zero());
+  b.sphereRadius.assign(cells, 0.0);
+  for (int c = 0; c < cells; ++c) {
+    if (b.start[c] == b.start[c + 1]) {
+      continue;
+    }
+    geometry::Box3 tight;
+    for (std::uint32_t j = b.start[c]; j < b.start[c + 1]; ++j) {
+      tight.extend(positions[b.samples[j]]);
+    }
+    b.sphereCentre[c] = tight.centre();
+    for (std::uint32_t j = b.start[c]; j < b.start[c + 1]; ++j) {
+      b.sphereRadius[c] = std::max(b.sphereRadius[c], (positions[b.samples[j]] - tight.centre()).norm());
+    }
+  }
 }
 
-/// Call f(sampleIndex) for the samples of `shape` in buckets that overlap the local box
+/// Call f(cell, lowCorner) for every non-empty bucket of `shape` that overlaps the local box
 /// [lo, hi] (body frame of the shape, unscaled).
 template <typename F>
-void forSamplesNear(const ShapeModel& shape, const Vec3& lo, const Vec3& hi, F&& f) {
+void forBucketsNear(const ShapeModel& shape, const Vec3& lo, const Vec3& hi, F&& f) {
   const SampleBuckets& b = shape.buckets;
-  const geometry::Box3 bounds = shape.mesh.bounds();
-  if ((hi.array() < bounds.min.array()).any() || (lo.array() > bounds.max.array()).any()) {
+  if ((hi.array() < shape.bounds.min.array()).any() || (lo.array() > shape.bounds.max.array()).any()) {
     return;
   }
   const auto c0 = bucketOf(b, lo);
@@ -93,8 +106,8 @@ void forSamplesNear(const ShapeModel& shape, const Vec3& lo, const Vec3& hi, F&&
     for (int y = c0[1]; y <= c1[1]; ++y) {
       for (int x = c0[0]; x <= c1[0]; ++x) {
         const int cell = x + kBuckets * (y + kBuckets * z);
-        for (std::uint32_t j = b.start[cell]; j < b.start[cell + 1]; ++j) {
-          f(b.samples[j]);
+        if (b.start[cell] != b.start[cell + 1]) {
+          f(cell, Vec3(b.origin + b.cell.cwiseProduct(Vec3(x, y, z))));
         }
       }
     }
@@ -150,6 +163,7 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
     model->radius = std::max(model->radius, v.norm());
   }
   model->unitMass = geometry::computeMassProperties(model->mesh);
+  model->bounds = model->mesh.bounds();
   model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
   model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
   buildBuckets(*model);
@@ -348,8 +362,9 @@ void World::computeForces(double dt) {
     }
   }
 
-  // A parallel region costs microseconds: not worth it for a handful of pairs.
-#pragma omp parallel for schedule(dynamic, 4) if (work.size() > 8)
+  // One pair can cost as much as a hundred (a concave unit on another versus a body on one
+  // height-field cell): pairs are handed out one at a time.
+#pragma omp parallel for schedule(dynamic, 1) if (work.size() > 1)
   for (std::size_t w = 0; w < work.size(); ++w) {
     PairWork& pw = work[w];
     const BodyId a = pw.key.first;
@@ -365,6 +380,7 @@ void World::computeForces(double dt) {
     double lengthScale = std::cbrt(shapeA.unitMass.volume) * sA;
     contact::ContactParameters params;
     double inverseMassSum = bodies_.inverseMass(a);
+
     if (plane) {
       // Static geometry as a set of half-spaces: a plane is one, a convex piece several; a
       // sample is inside when it is below all of them, at the depth of the nearest face.
@@ -392,31 +408,24 @@ void World::computeForces(double dt) {
       }
       // Visit only the buckets that reach into the region and below every face.
       const SampleBuckets& bk = shapeA.buckets;
-      const geometry::Mat3 toLocal = qA.conjugate().toRotationMatrix();
+      const geometry::Mat3 RA = qA.toRotationMatrix();
+      const geometry::Mat3 toLocal = RA.transpose();
       const Vec3 regionCentre = toLocal * (region.centre() - xA) / sA;
       const Vec3 regionHalf = toLocal.cwiseAbs() * (0.5 * region.size()) / sA;
       const Vec3 cellHalf = 0.5 * bk.cell;
-      for (int cell = 0; cell < kBuckets * kBuckets * kBuckets; ++cell) {
-        if (bk.start[cell] == bk.start[cell + 1]) {
-          continue;
-        }
-        const Vec3 index3(cell % kBuckets, (cell / kBuckets) % kBuckets, cell / (kBuckets * kBuckets));
-        const Vec3 centre = bk.origin + bk.cell.cwiseProduct(index3 + Vec3::Constant(0.5));
-        if (((centre - regionCentre).cwiseAbs() - regionHalf - cellHalf).maxCoeff() > 0.0) {
-          continue;
-        }
-        const Vec3 worldCentre = xA + qA * (sA * centre);
-        bool outside = false;
-        for (std::size_t k = 0; k < normals.size() && !outside; ++k) {
+      forBucketsNear(shapeA, regionCentre - regionHalf, regionCentre + regionHalf, [&](int cell, const Vec3& low) {
+
+        const Vec3 worldCentre = xA + qA * (sA * (low + cellHalf));
+        for (std::size_t k = 0; k < normals.size(); ++k) {
           const double reach = sA * cellHalf.dot((toLocal * normals[k]).cwiseAbs());
-          outside = normals[k].dot(worldCentre) - offsets[k] > reach;
-        }
-        if (outside) {
-          continue;
+          if (normals[k].dot(worldCentre) - offsets[k] > reach) {
+            return; // the whole bucket is outside this face
+          }
         }
         for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
           const std::uint32_t i = bk.samples[j];
-          const Vec3 X = xA + qA * (sA * samplesA.positions()[i]);
+
+          const Vec3 X = xA + RA * (sA * samplesA.positions()[i]);
           double phi = -std::numeric_limits<double>::infinity();
           std::size_t nearest = 0;
           for (std::size_t k = 0; k < normals.size(); ++k) {
@@ -430,13 +439,13 @@ void World::computeForces(double dt) {
             // Projected tributary area: the pressure acts on the part of the sample's area that
             // faces the static surface, so a face pressed flat engages exactly its own area.
             const Vec3& n = normals[nearest];
-            const double area = -sA * sA * (qA * samplesA.areaVectors()[i]).dot(n);
+            const double area = -sA * sA * (RA * samplesA.areaVectors()[i]).dot(n);
             if (area > 0.0) {
               engaged.push_back({i, X, n, -phi, area});
             }
           }
         }
-      }
+      });
       params = pairParameters(bodyMaterial_[a], staticMaterial, lengthScale);
     } else {
       const BodyId b = pw.key.second;
@@ -453,28 +462,53 @@ void World::computeForces(double dt) {
         const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
         const double sp = dir == 0 ? sA : sB;
         const double st = dir == 0 ? sB : sA;
-        const Quat& qp = bodies_.orientation(probe);
+        const geometry::Mat3 Rp = bodies_.orientation(probe).toRotationMatrix();
         const Vec3& xp = bodies_.position(probe);
-        const Quat qtInv = bodies_.orientation(target).conjugate();
-        const Quat& qt = bodies_.orientation(target);
+        const geometry::Mat3 Rt = bodies_.orientation(target).toRotationMatrix();
         const Vec3& xt = bodies_.position(target);
-        const auto& box = boxes_[target];
         const auto& samples = *ps.samples;
-        // The target's world box seen from the probe's (unscaled) body frame, as a box there.
-        const geometry::Mat3 toProbe = qp.conjugate().toRotationMatrix();
-        const Vec3 centre = toProbe * (box.centre() - xp) / sp;
-        const Vec3 half = toProbe.cwiseAbs() * (0.5 * box.size()) / sp;
-        forSamplesNear(ps, centre - half, centre + half, [&](std::uint32_t i) {
-          const Vec3 X = xp + qp * (sp * samples.positions()[i]);
-          if (!insideBox(box, X)) {
+        const contact::LevelSet& ls = *ts.levelSet;
+        // Probe frame (unscaled) -> target frame (unscaled): L = Rrel p + trel.
+        const geometry::Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
+        const Vec3 trel = Rt.transpose() * (xp - xt) / st;
+        // phi < 0 needs L within the target's mesh bounds grown by sqrt(3) h (LevelSet::mayPenetrate).
+        const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * ls.cellSize());
+        const Vec3 targetLo = ls.meshBounds().min - grow;
+        const Vec3 targetHi = ls.meshBounds().max + grow;
+        // The target's grown mesh box (an oriented box) seen from the probe's unscaled body
+        // frame, as an axis-aligned box there: tighter than the target's world box.
+        const geometry::Mat3 toProbe = Rp.transpose() * Rt * (st / sp);
+        const Vec3 centre = toProbe * (0.5 * (targetLo + targetHi)) + Rp.transpose() * (xt - xp) / sp;
+        const Vec3 half = toProbe.cwiseAbs() * (0.5 * (targetHi - targetLo));
+        const double h = ls.cellSize();
+        forBucketsNear(ps, centre - half, centre + half, [&](int cell, const Vec3& /*low*/) {
+
+          // Whole bucket first, by the sphere around its samples (radius r, centre c, in the
+          // target frame): an interpolated phi < 0 at x needs a true distance below sqrt(3) h
+          // there, and the true distance at x is at least that at c minus r, which is at least
+          // phi(c) - sqrt(3) h; so phi(c) > r + 2 sqrt(3) h rules out the whole bucket.
+          const Vec3 bc = Rrel * ps.buckets.sphereCentre[cell] + trel;
+          const double r = ps.buckets.sphereRadius[cell] * (sp / st);
+          if (ls.value(bc) > r + 2.0 * std::sqrt(3.0) * h + 1e-6 * h) {
             return;
           }
-          const contact::LevelSetQuery q = ts.levelSet->query(qtInv * (X - xt), st);
-          if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
-            const Vec3 n = qt * q.normal; // out of the target: pushes the probe
-            const double area = -sp * sp * (qp * samples.areaVectors()[i]).dot(n);
-            if (area > 0.0) {
-              engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi, area});
+
+          for (std::uint32_t j = ps.buckets.start[cell]; j < ps.buckets.start[cell + 1]; ++j) {
+            const std::uint32_t i = ps.buckets.samples[j];
+
+            const Vec3 L = Rrel * samples.positions()[i] + trel;
+            if ((L.array() < targetLo.array()).any() || (L.array() > targetHi.array()).any() || !(ls.value(L) < 0.0)) {
+              continue;
+            }
+
+            const contact::LevelSetQuery q = ls.query(L);
+            if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
+              const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
+              const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
+              const double area = -sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
+              if (area > 0.0) {
+                engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi * st, area});
+              }
             }
           }
         });

@@ -79,6 +79,8 @@ struct SampleBuckets {
   Vec3 cell = Vec3::Ones();                  ///< bucket size (unit: m)
   std::vector<std::uint32_t> start;          ///< kCells^3 + 1 offsets into `samples`
   std::vector<std::uint32_t> samples;        ///< sample indices grouped by bucket
+  std::vector<Vec3> sphereCentre;            ///< per bucket: centre of the smallest box of its samples (m)
+  std::vector<double> sphereRadius;          ///< per bucket: radius about that centre holding its samples (m)
 };
 
 /// A shape prepared for simulation: moved to its principal frame, with its contact geometry.
@@ -90,6 +92,7 @@ struct ShapeModel {
   std::unique_ptr<contact::LevelSet> levelSet;
   std::unique_ptr<contact::SurfaceSamples> samples;
   SampleBuckets buckets;
+  geometry::Box3 bounds;                ///< bounds of `mesh` (unit: m, body frame)
   double radius = 0.0;                  ///< largest vertex distance from the centroid (m)
 };
 
