@@ -141,6 +141,17 @@ void RigidBodies::updateAngularVelocity(BodyId i) {
   angularVelocity_[i] = q * inverseInertia_[i].cwiseProduct(q.conjugate() * angularMomentum_[i]);
 }
 
+void RigidBodies::restoreState(BodyId i, MotionType type, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& L) {
+  setMotionType(i, type);
+  position_[i] = x;
+  orientation_[i] = q;
+  if (type == MotionType::Dynamic) {
+    velocity_[i] = v;
+    angularMomentum_[i] = L;
+  }
+  updateAngularVelocity(i);
+}
+
 void RigidBodies::setOrientation(BodyId i, const Quat& q) {
   orientation_[i] = q.normalized();
   updateAngularVelocity(i);

@@ -130,6 +130,11 @@ public:
   /// Sets L = R diag(I) R^T omega. Ignored (kept at zero) unless the body is Dynamic.
   void setWorldAngularVelocity(BodyId i, const Vec3& omega);
 
+  /// Restart from a checkpoint: set the raw state exactly (no normalisation, no conversion), so
+  /// that a restored run continues bit for bit; the motion type is set first (see setMotionType)
+  /// and omega is recomputed from L as the integrator does. L is the world angular momentum.
+  void restoreState(BodyId i, MotionType type, const Vec3& x, const Quat& q, const Vec3& v, const Vec3& L);
+
   // --- Force accumulators (world frame) --------------------------------------------------------
   /// Zero every force and torque accumulator: the first thing the force stage does.
   void clearForces();

@@ -124,6 +124,7 @@ struct World::PairWork {
   History history;
   double maxPointForce = 0.0;
   double maxOverlap = 0.0;
+  double elasticEnergy = 0.0; ///< J
 };
 
 World::World(const WorldSettings& settings) : settings_(settings) {}
@@ -208,6 +209,8 @@ BodyId World::addBody(const BodySpec& spec) {
   restTime_.push_back(0.0);
   cachedStep_ = -1.0;
   forcesReady_ = false;
+  energyStarted_ = false; // a new body brings its own energy: the guard starts again
+  energyPeak_ = 0.0;
   return id;
 }
 
@@ -540,6 +543,8 @@ void World::computeForces(double dt) {
       const contact::PointForce f = contact::evaluatePointContact(params, {e.normal, e.depth, e.area, vRel},
                                                                   prev ? *prev : contact::PointHistory{}, beta, dt);
       pw.maxPointForce = std::max(pw.maxPointForce, f.force.norm());
+      const double k = contact::pointStiffness(params, e.area);
+      pw.elasticEnergy += 0.5 * k * (e.depth * e.depth + params.tangentialStiffnessRatio * f.history.stretch.squaredNorm());
       pw.forceA += f.force;
       pw.torqueA += (e.point - xA).cross(f.force);
       if (!plane) {
@@ -554,6 +559,7 @@ void World::computeForces(double dt) {
   // Serial, ordered accumulation: bit-identical for any thread count.
   stats_ = {};
   stats_.candidatePairs = work.size();
+  contactEnergy_ = 0.0;
   contactCount_.assign(nBodies, 0);
   maxContactForce_.assign(nBodies, 0.0);
   std::map<contact::BodyPair, History> nextHistory;
@@ -576,6 +582,7 @@ void World::computeForces(double dt) {
       maxContactForce_[pw.key.second] = std::max(maxContactForce_[pw.key.second], pw.maxPointForce);
     }
     stats_.contactPoints += pw.history.size();
+    contactEnergy_ += pw.elasticEnergy;
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
     // Guard rail: an overlap this deep means the contact cannot hold (time step, stiffness or
     // tunnelling), and the forces that follow are meaningless.
@@ -696,6 +703,131 @@ void World::step() {
     }
   }
   updateSleep(dt);
+  if (settings_.energyGuard.enabled && steps_ % std::max<std::uint32_t>(1, settings_.energyGuard.checkInterval) == 0) {
+    checkEnergy();
+  }
+}
+
+void World::checkEnergy() {
+  const EnergyGuardSettings& g = settings_.energyGuard;
+  double kinetic = 0.0, potential = 0.0, weightScale = 0.0;
+  BodyId hottest = 0;
+  double hottestEnergy = -1.0;
+  for (BodyId b = 0; b < bodies_.size(); ++b) {
+    if (bodies_.motionType(b) == dynamics::MotionType::Static) {
+      continue;
+    }
+    const double m = bodies_.info(b).mass;
+    const double ke = bodies_.kineticEnergy(b);
+    kinetic += ke;
+    potential -= m * settings_.gravity.dot(bodies_.position(b));
+    const double dn = std::cbrt(shapes_[bodyShape_[b]]->unitMass.volume) * bodyScale_[b];
+    weightScale = std::max(weightScale, m * settings_.gravity.norm() * dn);
+    if (ke > hottestEnergy) {
+      hottestEnergy = ke;
+      hottest = b;
+    }
+  }
+  const double net = kinetic + potential + contactEnergy_ - externalWork_;
+  energyPeak_ = std::max(energyPeak_, kinetic + contactEnergy_);
+  if (!energyStarted_) {
+    energyStarted_ = true;
+    energyMinimum_ = net;
+    return;
+  }
+  const double tolerance = g.growthPerBodyWeight * weightScale + g.growthPerPeakEnergy * energyPeak_;
+  if (net > energyMinimum_ + tolerance) {
+    throw SimulationError(fmt::format(
+        "t = {:.6g} s: the energy grew by {:.4g} J without work from outside (kinetic {:.4g} J, contact {:.4g} J; "
+        "tolerance {:.4g} J); the integration is unstable, fastest body: {} ({:.4g} J): lower the time step or "
+        "the penalty modulus, or raise the restitution damping",
+        time_, net - energyMinimum_, kinetic, contactEnergy_, tolerance, bodies_.describe(hottest), hottestEnergy));
+  }
+  energyMinimum_ = std::min(energyMinimum_, net);
+}
+
+WorldState World::captureState() const {
+  WorldState s;
+  s.time = time_;
+  s.steps = steps_;
+  s.forcesReady = forcesReady_;
+  s.energyMinimum = energyMinimum_;
+  s.externalWork = externalWork_;
+  s.energyPeak = energyPeak_;
+  s.energyStarted = energyStarted_;
+  s.bodies.resize(bodies_.size());
+  for (BodyId b = 0; b < bodies_.size(); ++b) {
+    BodyState& o = s.bodies[b];
+    o.motion = bodies_.motionType(b);
+    o.position = bodies_.position(b);
+    o.orientation = bodies_.orientation(b);
+    o.velocity = bodies_.velocity(b);
+    o.angularMomentum = bodies_.angularMomentumWorld(b);
+    o.force = bodies_.force(b);
+    o.torque = bodies_.torque(b);
+    o.restTime = restTime_[b];
+    o.contactCount = contactCount(b);
+    o.maxContactForce = maxContactForce(b);
+  }
+  for (const auto& [pair, points] : history_) {
+    for (const auto& [key, h] : points) {
+      s.contacts.push_back({pair.first, pair.second, key, h.stretch, h.sliding});
+    }
+  }
+  return s;
+}
+
+void World::restoreState(const WorldState& s) {
+  if (s.bodies.size() != bodies_.size()) {
+    core::failInput("checkpoint", "holds {} bodies but the scene builds {}: restart with the scene the run was "
+                                  "started with", s.bodies.size(), bodies_.size());
+  }
+  const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
+  for (const ContactPointState& c : s.contacts) {
+    const std::uint32_t index = c.second & ~kStaticBits;
+    const bool ok = c.first < nBodies &&
+                    ((c.second & kPlaneBit) != 0   ? index < planes_.size()
+                     : (c.second & kConvexBit) != 0 ? index < convex_.size()
+                                                    : c.second < nBodies && c.first < c.second);
+    if (!ok) {
+      core::failInput("checkpoint", "contact ({}, {:#x}) does not exist in this scene: restart with the scene the "
+                                    "run was started with", c.first, c.second);
+    }
+  }
+  time_ = s.time;
+  steps_ = s.steps;
+  energyMinimum_ = s.energyMinimum;
+  externalWork_ = s.externalWork;
+  energyPeak_ = s.energyPeak;
+  energyStarted_ = s.energyStarted;
+  contactCount_.assign(nBodies, 0);
+  maxContactForce_.assign(nBodies, 0.0);
+  bodies_.clearForces();
+  auto forces = bodies_.forces();
+  auto torques = bodies_.torques();
+  for (BodyId b = 0; b < nBodies; ++b) {
+    const BodyState& o = s.bodies[b];
+    if ((o.motion == dynamics::MotionType::Static) != (bodies_.motionType(b) == dynamics::MotionType::Static)) {
+      core::failInput("checkpoint", "{} is {} in the checkpoint but {} in the scene: restart with the scene the run "
+                                    "was started with", bodies_.describe(b),
+                      o.motion == dynamics::MotionType::Static ? "fixed" : "free",
+                      o.motion == dynamics::MotionType::Static ? "free" : "fixed");
+    }
+    bodies_.restoreState(b, o.motion, o.position, o.orientation, o.velocity, o.angularMomentum);
+    forces[b] = o.force;
+    torques[b] = o.torque;
+    restTime_[b] = o.restTime;
+    contactCount_[b] = o.contactCount;
+    maxContactForce_[b] = o.maxContactForce;
+  }
+  history_.clear();
+  for (const ContactPointState& c : s.contacts) {
+    history_[{c.first, c.second}].emplace_back(c.key, contact::PointHistory{c.stretch, c.sliding});
+  }
+  for (auto& [pair, points] : history_) {
+    std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  }
+  forcesReady_ = s.forcesReady;
 }
 
 void World::advanceTo(double t) {

@@ -19,6 +19,7 @@
 #include "dynamics/RigidBodies.hpp"
 #include "geometry/MassProperties.hpp"
 #include "geometry/TriangleMesh.hpp"
+#include "simulation/WorldState.hpp"
 
 #include <array>
 #include <cstdint>
@@ -58,6 +59,21 @@ struct SleepSettings {
   double time = 0.5;            ///< a whole contact island must rest this long to sleep (unit: s)
 };
 
+/// The energy guard rail: without work from outside (gravity is in the energy, contacts only
+/// dissipate), E = kinetic + gravitational + elastic contact energy cannot grow. A rise of
+/// E - W (W: work of external loads) above its lowest value by more than the tolerance means the
+/// integration is unstable, and the run stops with the most energetic body named.
+struct EnergyGuardSettings {
+  bool enabled = true;
+  /// Tolerated rise, as a multiple of the largest m |g| Dn of a dynamic body (unit: -): a body
+  /// thrown up by its own size is already far beyond integration noise.
+  double growthPerBodyWeight = 2.0;
+  /// Further tolerated rise, as a fraction of the largest kinetic + elastic energy seen (unit: -):
+  /// the bounded energy oscillation of an explicit step through stiff impacts.
+  double growthPerPeakEnergy = 0.1;
+  std::uint32_t checkInterval = 50; ///< steps between checks (unit: -)
+};
+
 /// Settings of the whole simulation.
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
@@ -68,6 +84,7 @@ struct WorldSettings {
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
   SleepSettings sleep;
+  EnergyGuardSettings energyGuard;
 };
 
 /// Surface samples bucketed on a coarse grid over the shape's bounds, so that the narrow phase
@@ -192,12 +209,25 @@ public:
   [[nodiscard]] Quat naturalOrientation(BodyId b) const;
   /// Total mechanical energy: kinetic + gravitational potential (J), contact energy excluded.
   [[nodiscard]] double mechanicalEnergy() const;
+  /// Elastic energy of the engaged contact points in the last force evaluation (J):
+  /// sum of k_point d^2 / 2 (normal springs) and k_t |s|^2 / 2 (friction springs).
+  [[nodiscard]] double contactEnergy() const { return contactEnergy_; }
+  /// Record work done on the bodies by loads outside the world (hydrodynamics), so the energy
+  /// guard does not take it for an instability (unit: J).
+  void addExternalWork(double joules) { externalWork_ += joules; }
+
+  /// The complete dynamic state, for checkpoints (WorldState.hpp).
+  [[nodiscard]] WorldState captureState() const;
+  /// Continue from a captured state of a world built from the same scene. Throws
+  /// core::InputError when the body count or a contact index does not fit this world.
+  void restoreState(const WorldState& state);
 
 private:
   struct PairWork;
   void computeForces(double dt);
   void updateBoxes();
   void updateSleep(double dt);
+  void checkEnergy();
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
 
   WorldSettings settings_;
@@ -226,6 +256,11 @@ private:
   std::uint64_t steps_ = 0;
   bool forcesReady_ = false;
   StepStatistics stats_;
+  double contactEnergy_ = 0.0;  ///< J, last force evaluation
+  double externalWork_ = 0.0;   ///< J, since the start
+  double energyMinimum_ = 0.0;  ///< lowest E - W seen at a check (J)
+  double energyPeak_ = 0.0;     ///< largest kinetic + elastic energy seen at a check (J)
+  bool energyStarted_ = false;
 };
 
 } // namespace armour::simulation
