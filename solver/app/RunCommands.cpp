@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "core/Log.hpp"
 #include "io/SceneReader.hpp"
+#include "simulation/CheckpointFile.hpp"
 #include "simulation/RunOutputs.hpp"
 #include "simulation/SceneBuilder.hpp"
 
@@ -13,10 +14,13 @@
 #include <omp.h>
 
 #include <chrono>
+#include <climits>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace armour::app {
@@ -35,7 +39,108 @@ struct RunOptions {
   bool durationGiven = false;
   int threads = 0;       ///< OpenMP threads, 0 = OpenMP's default
   std::string output;    ///< overrides the scene's output folder when not empty
+  bool restart = false;  ///< continue from <output>/checkpoint.nc
 };
+
+/// Exit code of a run stopped by SIGINT or SIGTERM (the shell's 128 + SIGINT).
+constexpr int kExitStopped = 130;
+
+// ---------------------------------------------------------------------------------------------
+// Stopping on a signal
+// ---------------------------------------------------------------------------------------------
+
+/// Set by the handler; read by the run loop after each step.
+volatile std::sig_atomic_t stopSignal = 0;
+
+extern "C" void onStopSignal(int signal) { stopSignal = signal; }
+
+/// SIGINT and SIGTERM ask the run to stop: it finishes the step, writes a checkpoint and exits
+/// with kExitStopped. The handler is one-shot (SA_RESETHAND): a second signal stops the program
+/// at once, leaving the last checkpoint (written atomically) in place. The previous handlers
+/// are restored when the run ends.
+class StopSignals {
+public:
+  StopSignals() {
+    stopSignal = 0;
+    struct sigaction action {};
+    action.sa_handler = onStopSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &action, &previousInt_);
+    sigaction(SIGTERM, &action, &previousTerm_);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &previousInt_, nullptr);
+    sigaction(SIGTERM, &previousTerm_, nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+  [[nodiscard]] int received() const { return stopSignal; }
+
+private:
+  struct sigaction previousInt_ {};
+  struct sigaction previousTerm_ {};
+};
+
+const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+// ---------------------------------------------------------------------------------------------
+// Checkpoints
+// ---------------------------------------------------------------------------------------------
+
+/// Writes the run's checkpoints: the scene's fingerprint and identity and the body names are the
+/// same in all of them.
+class RunCheckpoints {
+public:
+  RunCheckpoints(std::string fingerprint, std::string identity, const simulation::World& world)
+      : fingerprint_(std::move(fingerprint)), identity_(std::move(identity)) {
+    for (simulation::BodyId b = 0; b < world.bodies().size(); ++b) {
+      names_.push_back(world.bodies().info(b).name);
+    }
+  }
+  /// Capture the world (read only: the run is not perturbed) and write it atomically.
+  void write(const fs::path& path, const simulation::World& world, const simulation::OutputSchedule& outputs,
+             const std::string& stopReason = {}) const {
+    simulation::Checkpoint c;
+    c.state = world.captureState();
+    c.sceneFingerprint = fingerprint_;
+    c.sceneIdentity = identity_;
+    c.bodyNames = names_;
+    c.outputs = outputs;
+    c.stopReason = stopReason;
+    simulation::writeCheckpoint(path, c);
+  }
+
+private:
+  std::string fingerprint_;
+  std::string identity_;
+  std::vector<std::string> names_;
+};
+
+/// The build line without its thread count, which does not change results.
+std::string buildWithoutThreads(std::string build) {
+  const auto comma = build.rfind(", ");
+  if (comma != std::string::npos && build.find("thread", comma) != std::string::npos) {
+    build.erase(comma);
+  }
+  return build;
+}
+
+/// Keep the log of the run being continued: run.log -> run.<k>.log, the first free k from 1.
+void keepPreviousLog(const fs::path& runLog) {
+  std::error_code ec;
+  if (!fs::exists(runLog, ec)) {
+    return;
+  }
+  for (int k = 1;; ++k) {
+    const fs::path kept = runLog.parent_path() / fmt::format("run.{}.log", k);
+    if (!fs::exists(kept, ec)) {
+      fs::rename(runLog, kept, ec);
+      return; // a log that cannot be moved is overwritten, which loses no result
+    }
+  }
+}
 
 /// Log a block of text one line at a time, so that every line carries the log prefix.
 void logLines(const std::shared_ptr<spdlog::logger>& log, const std::string& text) {
@@ -105,6 +210,23 @@ void runScene(const RunOptions& o) {
   if (!o.output.empty()) {
     scene.output.folder = fs::absolute(o.output);
   }
+  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path runLog = scene.output.folder / "run.log";
+  // What the run computes, to recognise its checkpoints: duration and output settings excluded.
+  const std::string identity = simulation::sceneIdentity(scene);
+  const std::string fingerprint = simulation::fingerprintOf(identity);
+  std::optional<simulation::Checkpoint> restart;
+  if (o.restart) {
+    // Read before anything in the folder changes: a refused restart leaves the run as it was.
+    restart = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
+    if (!restart->stopReason.empty()) {
+      core::failInput(checkpointPath.string(),
+                      "was written when the run stopped on an error ({}): it holds the state of the failed step, "
+                      "which cannot be continued; fix the cause and start the run anew",
+                      restart->stopReason);
+    }
+    keepPreviousLog(runLog);
+  }
   std::error_code ec;
   fs::create_directories(scene.output.folder, ec);
   if (ec) {
@@ -112,29 +234,70 @@ void runScene(const RunOptions& o) {
                                                   "--output to a writable place",
                     ec.message(), scene.sourceName);
   }
-  const fs::path runLog = scene.output.folder / "run.log";
   // The file sink first, then the build line again: the run log must start with it.
   core::addLogFile(runLog.string());
   auto log = core::logger("run");
   log->info("{}", core::buildInfo());
-  log->info("run {} -> {}", o.scene, scene.output.folder.string());
+  log->info("run {} -> {}{}", o.scene, scene.output.folder.string(), o.restart ? " (restart)" : "");
   logLines(log, io::describeScene(scene));
+  log->info("scene fingerprint {} (checkpoints are refused by a scene with another one)", fingerprint);
 
   const auto buildStart = Clock::now();
   simulation::BuiltScene built = simulation::buildWorld(scene);
   logLines(log, simulation::describeBuild(scene, built));
   log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
-  simulation::RunOutputs outputs(scene, built, "armour run " + o.scene);
+  simulation::World& world = *built.world;
+  if (restart) {
+    try {
+      world.restoreState(restart->state);
+    } catch (const core::InputError& e) {
+      core::failInput(checkpointPath.string(), "{}", e.what());
+    }
+    if (buildWithoutThreads(restart->build) != buildWithoutThreads(core::buildInfo())) {
+      log->warn("{} was written by {}; this is {}: the continued run may differ in the last bits from an "
+                "uninterrupted run of either",
+                checkpointPath.string(), restart->build, core::buildInfo());
+    }
+    log->info("restarted from t = {} s (step {}) of {}", world.time(), world.stepCount(), checkpointPath.string());
+    if (world.time() >= scene.duration - 0.5 * world.timeStep()) {
+      log->warn("the checkpoint is at t = {} s, not before the duration {} s: nothing to run (give a longer "
+                "--duration to extend the run)",
+                world.time(), scene.duration);
+    }
+  }
+  const std::optional<simulation::OutputSchedule> resume =
+      restart ? std::optional<simulation::OutputSchedule>(restart->outputs) : std::nullopt;
+  simulation::RunOutputs outputs(scene, built, "armour run " + o.scene + (o.restart ? " --restart" : ""), resume);
   log->info("outputs in {}: bodies.pvd (VTK every {} s), bodies.nc (series every {} s), final_state.csv",
             scene.output.folder.string(), scene.output.vtkInterval, scene.output.seriesInterval);
+  const RunCheckpoints checkpoints(fingerprint, identity, world);
+  const double checkpointEvery = scene.output.checkpointInterval;
+  const double checkpointWallSeconds = 60.0 * scene.output.checkpointWallMinutes;
+  std::string when;
+  if (checkpointEvery > 0.0) {
+    when += fmt::format("every {} s of simulated time, ", checkpointEvery);
+  }
+  if (checkpointWallSeconds > 0.0) {
+    when += fmt::format("every {} min of wall time, ", scene.output.checkpointWallMinutes);
+  }
+  log->info("checkpoints to {}: {}at the end and when stopped by SIGINT or SIGTERM", checkpointPath.string(), when);
 
-  simulation::World& world = *built.world;
   const double dt = world.timeStep();
   const double end = scene.duration;
+  const std::uint64_t firstStep = world.stepCount();
   double maxOverlap = 0.0;
   const auto start = Clock::now();
   auto lastReport = start;
+  auto lastCheckpoint = start;
   const auto wallSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  // Checkpoint k is due at k x interval (simulated), like the outputs; taken at the first step
+  // after that at which bodies.nc is flushed (RunOutputs::flushed), which is within the interval.
+  const auto nextCheckpointIndex = [checkpointEvery](double t) {
+    return checkpointEvery > 0.0 ? static_cast<long>(std::floor(t / checkpointEvery + 1e-9)) + 1 : LONG_MAX;
+  };
+  long nextCheckpoint = nextCheckpointIndex(world.time());
+  bool stopped = false;
+  StopSignals signals;
   try {
     // Same end test as World::advanceTo: the last step lands within half a step of the end.
     outputs.update(world);
@@ -142,10 +305,23 @@ void runScene(const RunOptions& o) {
       world.step();
       outputs.update(world);
       maxOverlap = std::max(maxOverlap, world.lastStep().maxOverlap);
+      if (signals.received() != 0) {
+        stopped = true;
+        break;
+      }
+      const bool due = (checkpointEvery > 0.0 &&
+                        world.time() >= (static_cast<double>(nextCheckpoint) - 1e-9) * checkpointEvery) ||
+                       (checkpointWallSeconds > 0.0 && wallSince(lastCheckpoint) >= checkpointWallSeconds);
+      if (due && outputs.flushed()) {
+        checkpoints.write(checkpointPath, world, outputs.schedule());
+        log->debug("checkpoint at t = {} s (step {})", world.time(), world.stepCount());
+        nextCheckpoint = nextCheckpointIndex(world.time());
+        lastCheckpoint = Clock::now();
+      }
       if (wallSince(lastReport) >= kProgressSeconds) {
         lastReport = Clock::now();
         const double wall = wallSince(start);
-        const double rate = static_cast<double>(world.stepCount()) / wall;
+        const double rate = static_cast<double>(world.stepCount() - firstStep) / wall;
         const double remaining = (end - world.time()) / dt / rate;
         log->info("t = {:.4f} s of {} s ({:.1f} %), {} steps, {:.0f} steps/s, ETA {:.0f} s; contacts {}, max overlap "
                   "{:.3g} m",
@@ -155,24 +331,49 @@ void runScene(const RunOptions& o) {
     }
   } catch (const simulation::SimulationError& e) {
     const fs::path state = scene.output.folder / "state_at_error.csv";
+    const fs::path errorCheckpoint = scene.output.folder / "checkpoint_at_error.nc";
     log->error("the simulation stopped after {} steps: {}", world.stepCount(), e.what());
     writeStateCsv(state, scene, built);
-    log->error("state at the stop written to {}; run log {}", state.string(), runLog.string());
+    std::string saved = state.string();
+    try {
+      checkpoints.write(errorCheckpoint, world, outputs.schedule(), e.what());
+      saved += ", " + errorCheckpoint.string();
+    } catch (const core::InputError& writeError) {
+      log->error("{}", writeError.what()); // the stop itself is the news: report it regardless
+    }
+    log->error("state at the stop written to {}; run log {}", saved, runLog.string());
     log->flush();
     std::cerr << fmt::format("error: {}: the simulation stopped: {}\n(state at the stop: {}; run log: {})\n",
-                             scene.sourceName, e.what(), state.string(), runLog.string());
+                             scene.sourceName, e.what(), saved, runLog.string());
     throw CLI::RuntimeError(3);
   }
+  if (stopped) {
+    // The outputs are closed without a final frame: the restarted run writes the next scheduled one.
+    outputs.close();
+    checkpoints.write(checkpointPath, world, outputs.schedule());
+    const std::string again = fmt::format("armour run {} --restart{}", o.scene,
+                                          o.output.empty() ? std::string() : " -o " + o.output);
+    log->warn("stopped by {} at t = {} s (step {}); checkpoint written to {}; continue with: {}",
+              signalName(signals.received()), world.time(), world.stepCount(), checkpointPath.string(), again);
+    log->flush();
+    std::cerr << fmt::format("{}: stopped by {} at t = {} s; checkpoint written to {}\ncontinue with: {}\n",
+                             scene.sourceName, signalName(signals.received()), world.time(), checkpointPath.string(),
+                             again);
+    throw CLI::RuntimeError(kExitStopped);
+  }
   outputs.finish(world);
+  checkpoints.write(checkpointPath, world, outputs.schedule());
   const double wall = wallSince(start);
   const fs::path finalState = scene.output.folder / "final_state.csv";
   writeStateCsv(finalState, scene, built);
-  log->info("finished: t = {:.6g} s in {} steps of {:.4g} s, wall time {:.2f} s ({:.0f} steps/s)", world.time(),
-            world.stepCount(), dt, wall, static_cast<double>(world.stepCount()) / std::max(wall, 1e-9));
+  const std::uint64_t steps = world.stepCount() - firstStep;
+  log->info("finished: t = {:.6g} s in {} steps of {:.4g} s{}, wall time {:.2f} s ({:.0f} steps/s)", world.time(),
+            world.stepCount(), dt, restart ? fmt::format(" ({} since the restart)", steps) : std::string(), wall,
+            static_cast<double>(steps) / std::max(wall, 1e-9));
   log->info("final kinetic energy {:.6g} J; deepest overlap seen {:.4g} m", world.bodies().totalKineticEnergy(),
             maxOverlap);
-  log->info("wrote {} VTK frames, {} series records and {}", outputs.vtkFrames(), outputs.seriesRecords(),
-            finalState.string());
+  log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
+            finalState.string(), checkpointPath.string());
   log->flush();
 }
 
@@ -192,6 +393,9 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   run->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP's default: OMP_NUM_THREADS or all cores)")
       ->capture_default_str();
   run->add_option("-o,--output", o->output, "output folder, instead of the scene's output.folder");
+  run->add_flag("--restart", o->restart,
+                "continue the run in the output folder from its checkpoint.nc (to the duration, which may be longer); "
+                "the scene may differ in duration and output settings only (docs/user-guide.md)");
   run->callback([o, duration] {
     o->durationGiven = duration->count() > 0;
     runScene(*o);

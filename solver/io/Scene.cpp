@@ -154,7 +154,7 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  vtk_interval = {} s{}", s.output.vtkInterval, s.output.vtkInterval > 0 ? "" : " (off)"));
   line(fmt::format("  series_interval = {} s{}", s.output.seriesInterval, s.output.seriesInterval > 0 ? "" : " (off)"));
   line(fmt::format("  checkpoint_interval = {} s{}", s.output.checkpointInterval,
-                   s.output.checkpointInterval > 0 ? "" : " (off)"));
+                   s.output.checkpointInterval > 0 ? "" : " (only at the end)"));
   line(fmt::format("  checkpoint_wall_minutes = {} min{}", s.output.checkpointWallMinutes,
                    s.output.checkpointWallMinutes > 0 ? "" : " (off)"));
   line(fmt::format("  contacts = {}", s.output.contacts));

@@ -207,8 +207,10 @@ struct OutputSettings {
   std::filesystem::path folder;    ///< absolute; default "<scene stem>-out" beside the scene file
   double vtkInterval = 0.1;        ///< between VTK snapshots (unit: s of simulated time); 0 = none
   double seriesInterval = 0.01;    ///< between time-series rows (unit: s); 0 = none
-  double checkpointInterval = 0.0; ///< between checkpoints (unit: s of simulated time); 0 = none
-  double checkpointWallMinutes = 30.0; ///< between checkpoints (unit: min of wall-clock time); 0 = none
+  /// Between checkpoints (checkpoint.nc, for `armour run --restart`) (unit: s of simulated time);
+  /// 0 = only at the end of the run (and when it is stopped by a signal or a guard rail).
+  double checkpointInterval = 1.0;
+  double checkpointWallMinutes = 30.0; ///< also between checkpoints (unit: min of wall-clock time); 0 = none
   bool contacts = false;           ///< also write contact points and forces with each snapshot
 };
 

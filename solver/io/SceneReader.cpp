@@ -611,7 +611,8 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.output.vtkInterval = o.number("vtk_interval", {"s", kNonNegative, "0.1; 0 = none"}, scene.output.vtkInterval);
   scene.output.seriesInterval = o.number("series_interval", {"s", kNonNegative, "0.01; 0 = none"}, scene.output.seriesInterval);
   scene.output.checkpointInterval =
-      o.number("checkpoint_interval", {"s", kNonNegative, "10 simulated seconds; 0 = none"}, scene.output.checkpointInterval);
+      o.number("checkpoint_interval", {"s", kNonNegative, "1 simulated second; 0 = only at the end"},
+               scene.output.checkpointInterval);
   scene.output.checkpointWallMinutes = o.number("checkpoint_wall_minutes", {"min", kNonNegative, "30; 0 = none"},
                                                 scene.output.checkpointWallMinutes);
   scene.output.contacts = o.flag("contacts", scene.output.contacts);

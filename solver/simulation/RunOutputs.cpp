@@ -3,28 +3,78 @@
 
 #include "core/BuildInfo.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace armour::simulation {
+namespace {
 
-RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine)
+/// Index of the first output time after t (time = index x interval), with the same allowance for
+/// round-off in t as the due test in update().
+long nextIndexAfter(double t, double interval) { return static_cast<long>(std::floor(t / interval + 1e-9)) + 1; }
+
+/// The largest flush block of bodies.nc (BodySeriesFile's default): few flushes, little at risk.
+constexpr std::size_t kMaxSyncEvery = 16;
+
+} // namespace
+
+std::size_t seriesSyncEvery(const io::OutputSettings& output) {
+  if (!(output.checkpointInterval > 0.0) || !(output.seriesInterval > 0.0)) {
+    return kMaxSyncEvery;
+  }
+  const double perInterval = std::floor(output.checkpointInterval / output.seriesInterval * (1.0 + 1e-9));
+  return static_cast<std::size_t>(std::clamp(perInterval, 1.0, static_cast<double>(kMaxSyncEvery)));
+}
+
+RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine,
+                       const std::optional<OutputSchedule>& resume)
     : scene_(scene), built_(built) {
+  if (resume) {
+    // Kept for the next checkpoint even when an output is now off, so that turning it on again
+    // in a later restart keeps its earlier frames.
+    lastScheduledVtk_ = resume->lastVtkTime;
+    lastScheduledSeries_ = resume->lastSeriesTime;
+  }
   if (scene.output.vtkInterval > 0.0) {
     io::VtkFrameSettings settings;
     settings.folder = scene.output.folder;
     settings.contacts = false;
+    if (resume) {
+      settings.resumeTime = resume->lastVtkTime;
+    }
     vtk_ = std::make_unique<io::VtkFrameWriter>(settings);
+    if (resume && resume->lastVtkTime >= 0.0) {
+      lastVtkTime_ = resume->lastVtkTime;
+      nextVtk_ = nextIndexAfter(lastVtkTime_, scene.output.vtkInterval);
+    }
+    if (resume && vtk_->frameCount() == 0) {
+      // No earlier frame to measure displacements from: use the initial positions, as the first
+      // frame of the uninterrupted run would have.
+      for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+        vtk_->setReferencePosition(static_cast<std::int32_t>(i), scene.bodies[i].position);
+      }
+    }
   }
   if (scene.output.seriesInterval > 0.0) {
     io::BodySeriesSettings settings;
     settings.path = scene.output.folder / "bodies.nc";
     settings.title = "armour body time series: " + scene.sourceName;
     settings.history = commandLine;
+    settings.syncEvery = seriesSyncEvery_ = seriesSyncEvery(scene.output);
+    if (resume) {
+      settings.resumeTime = resume->lastSeriesTime;
+    }
     std::vector<io::SeriesBody> bodies;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       bodies.push_back({static_cast<std::int32_t>(i), scene.bodies[i].name});
     }
     series_ = std::make_unique<io::BodySeriesFile>(settings, bodies);
+    // The schedule goes on from the checkpoint's last record, which the file holds: a checkpoint
+    // is only taken when the file is flushed (flushed()).
+    if (resume && resume->lastSeriesTime >= 0.0) {
+      lastSeriesTime_ = resume->lastSeriesTime;
+      nextSeries_ = nextIndexAfter(lastSeriesTime_, scene.output.seriesInterval);
+    }
   }
 }
 
@@ -57,13 +107,15 @@ void RunOutputs::update(const World& world) {
   const auto due = [t](long index, double interval) { return t >= index * interval - 1e-9 * interval; };
   if (vtk_ && due(nextVtk_, scene_.output.vtkInterval)) {
     vtk_->write(frame(world));
-    lastVtkTime_ = t;
-    nextVtk_ = static_cast<long>(std::floor(t / scene_.output.vtkInterval + 1e-9)) + 1;
+    lastVtkTime_ = lastScheduledVtk_ = t;
+    nextVtk_ = nextIndexAfter(t, scene_.output.vtkInterval);
   }
   if (series_ && due(nextSeries_, scene_.output.seriesInterval)) {
     series_->append(frame(world));
-    lastSeriesTime_ = t;
-    nextSeries_ = static_cast<long>(std::floor(t / scene_.output.seriesInterval + 1e-9)) + 1;
+    // BodySeriesFile flushes after every seriesSyncEvery_-th append since it was opened.
+    seriesSinceFlush_ = (seriesSinceFlush_ + 1) % seriesSyncEvery_;
+    lastSeriesTime_ = lastScheduledSeries_ = t;
+    nextSeries_ = nextIndexAfter(t, scene_.output.seriesInterval);
   }
 }
 
@@ -79,6 +131,14 @@ void RunOutputs::finish(const World& world) {
       lastSeriesTime_ = t;
     }
     series_->close();
+    seriesSinceFlush_ = 0;
+  }
+}
+
+void RunOutputs::close() {
+  if (series_) {
+    series_->close();
+    seriesSinceFlush_ = 0;
   }
 }
 

@@ -5,21 +5,41 @@
 /// body's surface (bodies.pvd, for ParaView) every `vtk_interval`, and the per-body netCDF time
 /// series (bodies.nc) every `series_interval` (docs/output-files.md). Frames are due when the
 /// simulated time passes a multiple of the interval, so output times do not depend on dt.
+///
+/// Restart: constructed with the OutputSchedule of a checkpoint, the writers keep the frames up
+/// to the last scheduled output before the checkpoint, drop the later ones (written by the
+/// abandoned run after the checkpoint, or the off-schedule final frame of a finished run that is
+/// now extended) and schedule the next output exactly as the uninterrupted run did, so that the
+/// outputs of a restarted run equal those of an uninterrupted one.
+///
+/// Checkpoints and bodies.nc: the series file is flushed to disk every `seriesSyncEvery` records
+/// (BodySeriesFile). A checkpoint may only be taken when flushed() is true, so that a run killed
+/// with SIGKILL after the checkpoint still has every record up to it on disk.
 
 #include "io/BodySeriesFile.hpp"
 #include "io/Scene.hpp"
 #include "io/VtkFrameWriter.hpp"
+#include "simulation/CheckpointFile.hpp"
 #include "simulation/SceneBuilder.hpp"
 
+#include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace armour::simulation {
 
+/// Records between flushes of bodies.nc (unit: records): at most 16, and at most the records in
+/// one checkpoint interval, so that a checkpoint waits for a flush (flushed()) by less than an
+/// interval (checkpoint_interval / series_interval records, at least 1).
+std::size_t seriesSyncEvery(const io::OutputSettings& output);
+
 class RunOutputs {
 public:
-  /// Open the writers in scene.output.folder. `commandLine` goes into the netCDF history.
-  RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine);
+  /// Open the writers in scene.output.folder. `commandLine` goes into the netCDF history. With
+  /// `resume` (a restart), continue the files of the run as they stood at that schedule.
+  RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine,
+             const std::optional<OutputSchedule>& resume = std::nullopt);
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
@@ -28,6 +48,14 @@ public:
   void update(const World& world);
   /// Write the final state if it was not just written, and close the files.
   void finish(const World& world);
+  /// Close the files without a final frame (a run stopped by a signal: the next output is the
+  /// scheduled one, written by the restarted run).
+  void close();
+
+  /// The last scheduled output times (finish()'s final frame not included), for a checkpoint.
+  [[nodiscard]] OutputSchedule schedule() const { return {lastScheduledVtk_, lastScheduledSeries_}; }
+  /// Everything written so far is on disk (bodies.nc flushed; VTK files are complete when renamed).
+  [[nodiscard]] bool flushed() const { return !series_ || seriesSinceFlush_ == 0; }
 
   [[nodiscard]] std::size_t vtkFrames() const;
   [[nodiscard]] std::size_t seriesRecords() const;
@@ -41,7 +69,10 @@ private:
   std::unique_ptr<io::BodySeriesFile> series_;
   long nextVtk_ = 0;    ///< index of the next VTK output time (time = index x interval)
   long nextSeries_ = 0; ///< index of the next series output time
-  double lastVtkTime_ = -1.0, lastSeriesTime_ = -1.0;
+  double lastVtkTime_ = -1.0, lastSeriesTime_ = -1.0;             ///< last written, final frame included (s)
+  double lastScheduledVtk_ = -1.0, lastScheduledSeries_ = -1.0;   ///< last written by update() (s)
+  std::size_t seriesSyncEvery_ = 16;  ///< as given to BodySeriesFile (unit: records)
+  std::size_t seriesSinceFlush_ = 0;  ///< records appended since BodySeriesFile last flushed
 };
 
 } // namespace armour::simulation

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <span>
 
 namespace armour::simulation {
@@ -30,9 +31,9 @@ struct Engaged {
   double area;        ///< m^2
 };
 
-using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
 
-const contact::PointHistory* findHistory(const History* h, std::uint32_t key) {
+const contact::PointHistory* findHistory(const std::vector<std::pair<std::uint32_t, contact::PointHistory>>* h,
+                                         std::uint32_t key) {
   if (h == nullptr) {
     return nullptr;
   }
@@ -168,6 +169,8 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
   model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
   model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
   buildBuckets(*model);
+  const auto& values = model->levelSet->values();
+  model->innerDepth = values.empty() ? 0.0 : -static_cast<double>(*std::min_element(values.begin(), values.end()));
   core::logger("simulation")
       ->debug("shape '{}': {} triangles, {} samples, level set {}x{}x{} (h = {:.4g} m)", name,
               model->mesh.triangleCount(), model->samples->size(), model->levelSet->nodeCounts()[0],
@@ -205,10 +208,12 @@ BodyId World::addBody(const BodySpec& spec) {
   const BodyId id = bodies_.add(def);
   bodyShape_.push_back(spec.shape);
   bodyScale_.push_back(s);
+  bodyDn_.push_back(std::cbrt(shape.unitMass.volume) * s);
   bodyMaterial_.push_back(spec.material);
   restTime_.push_back(0.0);
   cachedStep_ = -1.0;
   forcesReady_ = false;
+  boxesValid_ = false;
   energyStarted_ = false; // a new body brings its own energy: the guard starts again
   energyPeak_ = 0.0;
   return id;
@@ -242,8 +247,17 @@ void World::addConvex(const std::string& name, const std::vector<Vec3>& corners,
   for (const auto& v : hull.vertices) {
     piece.box.extend(v);
   }
+  piece.innerDepth = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < piece.normals.size(); ++k) {
+    double across = 0.0;
+    for (const auto& v : hull.vertices) {
+      across = std::max(across, piece.offsets[k] - piece.normals[k].dot(v));
+    }
+    piece.innerDepth = std::min(piece.innerDepth, 0.5 * across);
+  }
   convex_.push_back(std::move(piece));
   forcesReady_ = false;
+  boxesValid_ = false;
 }
 
 Quat World::naturalOrientation(BodyId b) const { return bodies_.orientation(b) * bodyNaturalToBody(b); }
@@ -274,7 +288,7 @@ double World::stableTimeStep() const {
     }
     const ShapeModel& shape = *shapes_[bodyShape_[b]];
     const double s = bodyScale_[b];
-    const double dn = std::cbrt(shape.unitMass.volume) * s;
+    const double dn = bodyDn(b);
     // Stiffest plausible contact: a third of the surface engaged (a cube resting in a corner
     // touches with two of its six faces), at the body's own length scale.
     const double k = maxModulus * (shape.samples->totalArea() * s * s / 3.0) / dn;
@@ -312,24 +326,40 @@ double World::timeStep() const {
 
 void World::updateBoxes() {
   const std::size_t n = bodies_.size();
-  // Bodies first, then the static convex pieces (never active: they pair only with awake bodies).
-  boxes_.resize(n + convex_.size());
-  active_.resize(n + convex_.size());
-  for (std::size_t k = 0; k < convex_.size(); ++k) {
-    boxes_[n + k] = convex_[k].box;
-    active_[n + k] = 0;
-  }
-  for (BodyId b = 0; b < n; ++b) {
+  const auto boxOf = [&](BodyId b) {
     const ShapeModel& shape = *shapes_[bodyShape_[b]];
     const double s = bodyScale_[b];
     const geometry::Box3 local = shape.levelSet->meshBounds();
     const geometry::Mat3 R = bodies_.orientation(b).toRotationMatrix();
     const Vec3 centre = bodies_.position(b) + R * (s * local.centre());
-    const Vec3 half = R.cwiseAbs() * (0.5 * s * local.size()) +
-                      Vec3::Constant(settings_.boxMarginPerDn * std::cbrt(shape.unitMass.volume) * s);
+    const Vec3 half = R.cwiseAbs() * (0.5 * s * local.size()) + Vec3::Constant(settings_.boxMarginPerDn * bodyDn(b));
     boxes_[b].min = centre - half;
     boxes_[b].max = centre + half;
+  };
+  if (!boxesValid_ || boxes_.size() != n + convex_.size()) {
+    // Everything: bodies first, then the static convex pieces (never active: they pair only
+    // with awake bodies).
+    boxes_.resize(n + convex_.size());
+    active_.resize(n + convex_.size());
+    for (std::size_t k = 0; k < convex_.size(); ++k) {
+      boxes_[n + k] = convex_[k].box;
+      active_[n + k] = 0;
+    }
+    for (BodyId b = 0; b < n; ++b) {
+      boxOf(b);
+      active_[b] = bodies_.isAwake(b) ? 1 : 0;
+    }
+    boxesValid_ = true;
+    broadPhase_.invalidate();
+    return;
+  }
+  // Only awake bodies move: a body's box stays valid while it is static or asleep (it fell
+  // asleep at the position its box was last computed for).
+  for (BodyId b = 0; b < n; ++b) {
     active_[b] = bodies_.isAwake(b) ? 1 : 0;
+  }
+  for (BodyId b : bodies_.awakeBodies()) {
+    boxOf(b);
   }
 }
 
@@ -367,20 +397,19 @@ void World::computeForces(double dt) {
 
   // One pair can cost as much as a hundred (a concave unit on another versus a body on one
   // height-field cell): pairs are handed out one at a time.
-#pragma omp parallel for schedule(dynamic, 1) if (work.size() > 1)
+#pragma omp parallel for schedule(dynamic, 1) if (work.size() >= 16)
   for (std::size_t w = 0; w < work.size(); ++w) {
     PairWork& pw = work[w];
     const BodyId a = pw.key.first;
     const bool plane = (pw.key.second & kStaticBits) != 0; // any static geometry: plane or convex piece
-    const auto histIt = history_.find(pw.key);
-    const History* previous = histIt == history_.end() ? nullptr : &histIt->second;
+    const History* previous = findPairHistory(pw.key);
     std::vector<Engaged> engaged;
     const ShapeModel& shapeA = *shapes_[bodyShape_[a]];
     const double sA = bodyScale_[a];
     const Quat& qA = bodies_.orientation(a);
     const Vec3& xA = bodies_.position(a);
     const auto& samplesA = *shapeA.samples;
-    double lengthScale = std::cbrt(shapeA.unitMass.volume) * sA;
+    double lengthScale = bodyDn(a);
     contact::ContactParameters params;
     double inverseMassSum = bodies_.inverseMass(a);
 
@@ -454,7 +483,7 @@ void World::computeForces(double dt) {
       const BodyId b = pw.key.second;
       const ShapeModel& shapeB = *shapes_[bodyShape_[b]];
       const double sB = bodyScale_[b];
-      lengthScale = std::min(lengthScale, std::cbrt(shapeB.unitMass.volume) * sB);
+      lengthScale = std::min(lengthScale, bodyDn(b));
       inverseMassSum += bodies_.inverseMass(b);
       // Both directions, each with half the penalty: symmetric in A and B, and both bodies'
       // edges and corners are detected.
@@ -543,8 +572,14 @@ void World::computeForces(double dt) {
       const contact::PointForce f = contact::evaluatePointContact(params, {e.normal, e.depth, e.area, vRel},
                                                                   prev ? *prev : contact::PointHistory{}, beta, dt);
       pw.maxPointForce = std::max(pw.maxPointForce, f.force.norm());
+      // Elastic energy: the normal spring, and the friction spring up to the stretch its elastic
+      // normal force can hold (after an impact the stored stretch carries the dashpot's share of
+      // the cap too, which the spring can never give back).
       const double k = contact::pointStiffness(params, e.area);
-      pw.elasticEnergy += 0.5 * k * (e.depth * e.depth + params.tangentialStiffnessRatio * f.history.stretch.squaredNorm());
+      const double kt = params.tangentialStiffnessRatio * k;
+      const double holdable = kt > 0.0 ? params.frictionStatic * k * e.depth / kt : 0.0;
+      const double stretch = std::min(f.history.stretch.norm(), holdable);
+      pw.elasticEnergy += 0.5 * (k * e.depth * e.depth + kt * stretch * stretch);
       pw.forceA += f.force;
       pw.torqueA += (e.point - xA).cross(f.force);
       if (!plane) {
@@ -562,7 +597,8 @@ void World::computeForces(double dt) {
   contactEnergy_ = 0.0;
   contactCount_.assign(nBodies, 0);
   maxContactForce_.assign(nBodies, 0.0);
-  std::map<contact::BodyPair, History> nextHistory;
+  PairHistories nextHistory;
+  nextHistory.reserve(history_.size() + 16);
   for (auto& pw : work) {
     if (pw.history.empty()) {
       continue;
@@ -584,37 +620,58 @@ void World::computeForces(double dt) {
     stats_.contactPoints += pw.history.size();
     contactEnergy_ += pw.elasticEnergy;
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
-    // Guard rail: an overlap this deep means the contact cannot hold (time step, stiffness or
-    // tunnelling), and the forces that follow are meaningless.
-    const double dnA = std::cbrt(shapes_[bodyShape_[a]]->unitMass.volume) * bodyScale_[a];
-    double dn = dnA;
-    std::string other;
+    // Guard rails: an overlap this deep means the contact cannot hold (time step, stiffness or
+    // speed), and the forces that follow are meaningless; past the middle of a thin part the
+    // push would even turn and carry the body through (tunnelling).
+    const BodyId other = pw.key.second & ~kStaticBits;
+    double dn = bodyDn(a);
+    double inner = shapes_[bodyShape_[a]]->innerDepth * bodyScale_[a];
+    std::string otherName;
     if ((pw.key.second & kStaticBits) == 0) {
-      const BodyId b = pw.key.second;
-      dn = std::min(dn, std::cbrt(shapes_[bodyShape_[b]]->unitMass.volume) * bodyScale_[b]);
-      other = bodies_.describe(b);
+      dn = std::min(dn, bodyDn(other));
+      inner = std::min(inner, shapes_[bodyShape_[other]]->innerDepth * bodyScale_[other]);
+      otherName = bodies_.describe(other);
+    } else if ((pw.key.second & kPlaneBit) != 0) {
+      otherName = "plane '" + planes_[other].name + "'";
     } else {
-      other = (pw.key.second & kPlaneBit) != 0 ? "plane '" + planes_[pw.key.second & ~kStaticBits].name + "'"
-                                               : "static piece '" + convex_[pw.key.second & ~kStaticBits].name + "'";
+      inner = std::min(inner, convex_[other].innerDepth);
+      otherName = "static piece '" + convex_[other].name + "'";
     }
-    if (pw.maxOverlap > settings_.maxOverlapPerDn * dn) {
+    const double overlapLimit = settings_.maxOverlapPerDn * dn;
+    const double tunnelLimit = settings_.maxOverlapPerInnerDepth * inner;
+    if (pw.maxOverlap > std::min(overlapLimit, tunnelLimit)) {
+      if (tunnelLimit < overlapLimit) {
+        throw SimulationError(fmt::format(
+            "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x the inner depth {:.4g} m of the thinner "
+            "part: it would pass through it (tunnel); make thin parts thicker, lower the speed, or raise the "
+            "penalty modulus",
+            time_, bodies_.describe(a), otherName, pw.maxOverlap, settings_.maxOverlapPerInnerDepth, inner));
+      }
       throw SimulationError(fmt::format(
           "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x Dn = {:.4g} m; the contact cannot hold: "
           "lower the time step, raise the penalty modulus, or check the initial positions",
-          time_, bodies_.describe(a), other, pw.maxOverlap, settings_.maxOverlapPerDn,
-          settings_.maxOverlapPerDn * dn));
+          time_, bodies_.describe(a), otherName, pw.maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
     }
-    nextHistory.emplace(pw.key, std::move(pw.history));
+    nextHistory.emplace_back(pw.key, std::move(pw.history));
   }
   // Pairs that were not examined because none of their bodies is awake keep their friction
   // springs: a sleeping pack wakes with the same contact state it fell asleep with.
   for (auto& [key, h] : history_) {
     const bool bodyPair = (key.second & kStaticBits) == 0;
     if (!bodies_.isAwake(key.first) && (!bodyPair || !bodies_.isAwake(key.second))) {
-      nextHistory.emplace(key, std::move(h));
+      nextHistory.emplace_back(key, std::move(h));
     }
   }
+  // Sorted by pair, for the binary search of the next step (keys are unique: a pair is either
+  // examined or kept).
+  std::sort(nextHistory.begin(), nextHistory.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   history_ = std::move(nextHistory);
+}
+
+const World::History* World::findPairHistory(const contact::BodyPair& key) const {
+  const auto it = std::lower_bound(history_.begin(), history_.end(), key,
+                                   [](const auto& e, const contact::BodyPair& k) { return e.first < k; });
+  return it != history_.end() && it->first == key ? &it->second : nullptr;
 }
 
 void World::updateSleep(double dt) {
@@ -721,7 +778,7 @@ void World::checkEnergy() {
     const double ke = bodies_.kineticEnergy(b);
     kinetic += ke;
     potential -= m * settings_.gravity.dot(bodies_.position(b));
-    const double dn = std::cbrt(shapes_[bodyShape_[b]]->unitMass.volume) * bodyScale_[b];
+    const double dn = bodyDn(b);
     weightScale = std::max(weightScale, m * settings_.gravity.norm() * dn);
     if (ke > hottestEnergy) {
       hottestEnergy = ke;
@@ -820,14 +877,17 @@ void World::restoreState(const WorldState& s) {
     contactCount_[b] = o.contactCount;
     maxContactForce_[b] = o.maxContactForce;
   }
-  history_.clear();
+  std::map<contact::BodyPair, History> byPair;
   for (const ContactPointState& c : s.contacts) {
-    history_[{c.first, c.second}].emplace_back(c.key, contact::PointHistory{c.stretch, c.sliding});
+    byPair[{c.first, c.second}].emplace_back(c.key, contact::PointHistory{c.stretch, c.sliding});
   }
-  for (auto& [pair, points] : history_) {
+  history_.clear();
+  for (auto& [pair, points] : byPair) {
     std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    history_.emplace_back(pair, std::move(points));
   }
   forcesReady_ = s.forcesReady;
+  boxesValid_ = false;
 }
 
 void World::advanceTo(double t) {

@@ -83,6 +83,10 @@ struct WorldSettings {
   contact::SurfaceSampleSettings samples; ///< surface sample spacing per shape
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
+  /// Guard rail against tunnelling: an overlap deeper than this fraction of the thinner part's
+  /// inner depth (the depth of its deepest interior point: half the thickness of a slab) stops
+  /// the run, before a point can pass the middle of a thin wall and be pushed out the far side (unit: -).
+  double maxOverlapPerInnerDepth = 0.5;
   SleepSettings sleep;
   EnergyGuardSettings energyGuard;
 };
@@ -110,6 +114,7 @@ struct ShapeModel {
   std::unique_ptr<contact::SurfaceSamples> samples;
   SampleBuckets buckets;
   geometry::Box3 bounds;                ///< bounds of `mesh` (unit: m, body frame)
+  double innerDepth = 0.0;              ///< depth of the deepest interior point, -min phi (unit: m, unscaled)
   double radius = 0.0;                  ///< largest vertex distance from the centroid (m)
 };
 
@@ -142,6 +147,9 @@ struct StaticConvex {
   std::vector<double> offsets; ///< n_k . x = d_k on face k (unit: m)
   std::vector<Vec3> vertices;  ///< corners (unit: m)
   geometry::Box3 box;          ///< bounds of the corners (unit: m)
+  /// Depth of the deepest interior point, estimated as half the smallest extent across a face
+  /// (exact for boxes and slabs) (unit: m).
+  double innerDepth = 0.0;
   MaterialId material = 0;
 };
 
@@ -216,6 +224,10 @@ public:
   /// guard does not take it for an instability (unit: J).
   void addExternalWork(double joules) { externalWork_ += joules; }
 
+  /// Static or sleeping bodies were moved by hand (bodies().setPosition ...): recompute their
+  /// boxes on the next step (awake bodies' boxes are recomputed every step anyway).
+  void invalidateBoxes() { boxesValid_ = false; }
+
   /// The complete dynamic state, for checkpoints (WorldState.hpp).
   [[nodiscard]] WorldState captureState() const;
   /// Continue from a captured state of a world built from the same scene. Throws
@@ -228,6 +240,7 @@ private:
   void updateBoxes();
   void updateSleep(double dt);
   void checkEnergy();
+  [[nodiscard]] double bodyDn(BodyId b) const { return bodyDn_[b]; }
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
 
   WorldSettings settings_;
@@ -240,6 +253,7 @@ private:
   // Per-body cold-ish data used by the contact stages.
   std::vector<ShapeId> bodyShape_;
   std::vector<double> bodyScale_;
+  std::vector<double> bodyDn_;   ///< nominal diameter: cube root of the volume (unit: m)
   std::vector<MaterialId> bodyMaterial_;
   std::vector<double> restTime_; ///< how long each body has been at rest (unit: s)
   std::vector<std::int32_t> contactCount_; ///< engaged points per body, last force evaluation
@@ -250,11 +264,17 @@ private:
   std::vector<contact::BodyPair> pairs_;
   /// Friction history per body pair (or body-plane / body-convex pair: second = flag bit | index), per
   /// sample key (direction bit | sample index), sorted by key.
-  std::map<contact::BodyPair, std::vector<std::pair<std::uint32_t, contact::PointHistory>>> history_;
+  using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
+  using PairHistories = std::vector<std::pair<contact::BodyPair, History>>;
+  PairHistories history_; ///< sorted by pair
+  [[nodiscard]] const History* findPairHistory(const contact::BodyPair& key) const;
   mutable double cachedStep_ = -1.0;
   double time_ = 0.0;
   std::uint64_t steps_ = 0;
   bool forcesReady_ = false;
+  /// Boxes of static and sleeping bodies are computed once and kept; false forces a full update
+  /// (bodies added, a restart). Moving a static body by hand needs invalidateBoxes().
+  bool boxesValid_ = false;
   StepStatistics stats_;
   double contactEnergy_ = 0.0;  ///< J, last force evaluation
   double externalWork_ = 0.0;   ///< J, since the start

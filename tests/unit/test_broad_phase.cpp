@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Sweep and prune finds exactly the overlapping pairs the O(N^2) reference finds, step after step
-// while boxes move (insertion-sort path), and skips pairs with no active body.
+// The broad phase (sweep and prune over moving boxes, a grid over resting ones) finds exactly the
+// overlapping pairs the O(N^2) reference finds, step after step while boxes move, fall asleep and
+// wake, and skips pairs with no active body.
 
 #include "contact/BroadPhase.hpp"
 
@@ -35,20 +36,43 @@ TEST(BroadPhase, MatchesBruteForceWhileBoxesMove) {
   for (std::size_t i = 0; i < active.size(); i += 3) {
     active[i] = 0; // every third body static or asleep
   }
+  // A few resting boxes much larger than the rest (a slope's toe): the large-box list.
+  for (std::size_t i = 0; i < 12; i += 3) {
+    boxes[i].max.x() += 15.0;
+  }
   BroadPhase broad;
   std::vector<BodyPair> pairs;
   std::size_t total = 0;
-  for (int step = 0; step < 20; ++step) {
+  for (int step = 0; step < 30; ++step) {
     broad.findPairs(boxes, active, pairs);
     EXPECT_EQ(pairs, bruteForcePairs(boxes, active)) << "step " << step;
     total += pairs.size();
-    for (auto& b : boxes) { // drift by up to a box size so the x order really changes
-      const Vec3 d(0.8 * ((rng() >> 11) * 0x1.0p-53 - 0.5), 0.3 * ((rng() >> 11) * 0x1.0p-53 - 0.5), 0.0);
-      b.min += d;
-      b.max += d;
+    for (std::size_t i = 0; i < boxes.size(); ++i) { // active boxes drift by up to a box size
+      if (active[i]) {
+        const Vec3 d(0.8 * ((rng() >> 11) * 0x1.0p-53 - 0.5), 0.3 * ((rng() >> 11) * 0x1.0p-53 - 0.5), 0.0);
+        boxes[i].min += d;
+        boxes[i].max += d;
+      }
+    }
+    if (step % 7 == 3) { // some bodies fall asleep, others wake
+      for (int k = 0; k < 20; ++k) {
+        const std::size_t i = rng() % active.size();
+        active[i] = active[i] != 0 ? 0 : 1;
+      }
+    }
+    if (step % 10 == 5) { // resting boxes moved by hand: the caller says so
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        if (!active[i]) {
+          boxes[i].min.y() += 0.4;
+          boxes[i].max.y() += 0.4;
+        }
+      }
+      broad.invalidate();
     }
   }
   EXPECT_GT(total, 1000u) << "the scene must actually have overlaps to test anything";
+  EXPECT_GE(broad.restingBuilds(), 6u) << "the resting grid is rebuilt when the resting set changes";
+  EXPECT_LE(broad.restingBuilds(), 10u) << "and only then";
 }
 
 TEST(BroadPhase, InactivePairsAndEmptyBoxesAreSkipped) {

@@ -357,7 +357,7 @@ TEST(SceneDefaults, MinimalSceneTakesEveryDefault) {
   EXPECT_EQ(s.output.folder, std::filesystem::absolute(kScenes / "minimal-out").lexically_normal());
   EXPECT_EQ(s.output.vtkInterval, 0.1);
   EXPECT_EQ(s.output.seriesInterval, 0.01);
-  EXPECT_EQ(s.output.checkpointInterval, 0.0);
+  EXPECT_EQ(s.output.checkpointInterval, 1.0);
   EXPECT_EQ(s.output.checkpointWallMinutes, 30.0);
   EXPECT_FALSE(s.output.contacts);
   EXPECT_TRUE(s.sleep.enabled);
