@@ -181,7 +181,7 @@ void writeStateCsv(const fs::path& path, const io::Scene& scene, const simulatio
 
 void checkScene(const std::string& path) {
   const io::Scene scene = io::readScene(path);
-  const simulation::BuiltScene built = simulation::buildWorld(scene);
+  simulation::BuiltScene built = simulation::buildWorld(scene);
   std::cout << io::describeScene(scene);
   if (!built.warnings.empty()) {
     std::cout << fmt::format("build warnings ({}):\n", built.warnings.size());
@@ -190,6 +190,16 @@ void checkScene(const std::string& path) {
     }
   }
   std::cout << simulation::describeBuild(scene, built);
+  // The forces of the initial state: overlaps the guard rails would stop the run for are found
+  // now, not after the build of a long run.
+  simulation::World& world = *built.world;
+  try {
+    world.evaluateContacts();
+  } catch (const simulation::SimulationError& e) {
+    core::failInput(path, "the initial positions cannot be run: {}", e.what());
+  }
+  std::cout << fmt::format("initial contacts: {} candidate pairs, {} engaged points, deepest overlap {:.4g} m\n",
+                           world.lastStep().candidatePairs, world.lastStep().contactPoints, world.lastStep().maxOverlap);
   std::cout << fmt::format("check: {} is valid\n", path);
 }
 

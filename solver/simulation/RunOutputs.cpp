@@ -38,7 +38,7 @@ RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const st
   if (scene.output.vtkInterval > 0.0) {
     io::VtkFrameSettings settings;
     settings.folder = scene.output.folder;
-    settings.contacts = false;
+    settings.contacts = scene.output.contacts;
     if (resume) {
       settings.resumeTime = resume->lastVtkTime;
     }
@@ -101,12 +101,35 @@ io::BodyFrame RunOutputs::frame(const World& world) const {
   return f;
 }
 
+std::vector<io::ContactPoint> RunOutputs::contactPoints(const World& world) const {
+  std::vector<io::ContactPoint> out;
+  if (!scene_.output.contacts) {
+    return out;
+  }
+  // World bodies -> scene body ids (static meshes are world bodies too, but not scene bodies: -1).
+  std::vector<std::int32_t> sceneId(world.bodies().size(), -1);
+  for (std::size_t i = 0; i < built_.bodyIndexOfSceneBody.size(); ++i) {
+    sceneId[built_.bodyIndexOfSceneBody[i]] = static_cast<std::int32_t>(i);
+  }
+  out.reserve(world.contactPatches().size());
+  for (const ContactPatch& p : world.contactPatches()) {
+    io::ContactPoint c;
+    c.position = p.point;
+    c.force = p.force;
+    c.normalForce = p.normalForce;
+    c.bodyA = sceneId[p.bodyA];
+    c.bodyB = p.bodyB >= 0 ? sceneId[static_cast<std::size_t>(p.bodyB)] : -1;
+    out.push_back(c);
+  }
+  return out;
+}
+
 void RunOutputs::update(const World& world) {
   const double t = world.time();
   // Due when t has reached the next multiple of the interval (to a hair, for round-off in t).
   const auto due = [t](long index, double interval) { return t >= index * interval - 1e-9 * interval; };
   if (vtk_ && due(nextVtk_, scene_.output.vtkInterval)) {
-    vtk_->write(frame(world));
+    vtk_->write(frame(world), contactPoints(world));
     lastVtkTime_ = lastScheduledVtk_ = t;
     nextVtk_ = nextIndexAfter(t, scene_.output.vtkInterval);
   }
@@ -122,7 +145,7 @@ void RunOutputs::update(const World& world) {
 void RunOutputs::finish(const World& world) {
   const double t = world.time();
   if (vtk_ && t > lastVtkTime_) {
-    vtk_->write(frame(world));
+    vtk_->write(frame(world), contactPoints(world));
     lastVtkTime_ = t;
   }
   if (series_) {

@@ -62,6 +62,8 @@ public:
 
 private:
   io::BodyFrame frame(const World& world) const;
+  /// The world's contact patches as contact points of the VTK contacts file (scene body ids).
+  std::vector<io::ContactPoint> contactPoints(const World& world) const;
 
   const io::Scene& scene_;
   const BuiltScene& built_;

@@ -126,6 +126,9 @@ struct World::PairWork {
   double maxPointForce = 0.0;
   double maxOverlap = 0.0;
   double elasticEnergy = 0.0; ///< J
+  Vec3 weightedPoint = Vec3::Zero(); ///< sum of normal force x point (N m)
+  Vec3 pointSum = Vec3::Zero();      ///< sum of the points (m)
+  double normalForce = 0.0;          ///< sum of normal forces (N)
 };
 
 World::World(const WorldSettings& settings) : settings_(settings) {}
@@ -468,6 +471,7 @@ void World::computeForces(double dt) {
             }
           }
           if (phi < 0.0) {
+            pw.maxOverlap = std::max(pw.maxOverlap, -phi); // engaged or not: the guard rails see every point inside
             // Projected tributary area: the pressure acts on the part of the sample's area that
             // faces the static surface, so a face pressed flat engages exactly its own area.
             const Vec3& n = normals[nearest];
@@ -534,6 +538,11 @@ void World::computeForces(double dt) {
             }
 
             const contact::LevelSetQuery q = ls.query(L);
+            if (q.phi < 0.0) {
+              // Engaged or not, the guard rails see every point inside: past the other body's
+              // middle a point faces the wrong way and is not engaged, but the overlap is real.
+              pw.maxOverlap = std::max(pw.maxOverlap, -q.phi * st);
+            }
             if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
               const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
               const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
@@ -554,7 +563,6 @@ void World::computeForces(double dt) {
     double pairStiffness = 0.0;
     for (const auto& e : engaged) {
       pairStiffness += contact::pointStiffness(params, e.area);
-      pw.maxOverlap = std::max(pw.maxOverlap, e.depth);
     }
     const double effectiveMass = inverseMassSum > 0.0 ? 1.0 / inverseMassSum : 0.0;
     const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
@@ -572,6 +580,9 @@ void World::computeForces(double dt) {
       const contact::PointForce f = contact::evaluatePointContact(params, {e.normal, e.depth, e.area, vRel},
                                                                   prev ? *prev : contact::PointHistory{}, beta, dt);
       pw.maxPointForce = std::max(pw.maxPointForce, f.force.norm());
+      pw.weightedPoint += f.normalForce * e.point;
+      pw.pointSum += e.point;
+      pw.normalForce += f.normalForce;
       // Elastic energy: the normal spring, and the friction spring up to the stretch its elastic
       // normal force can hold (after an impact the stored stretch carries the dashpot's share of
       // the cap too, which the spring can never give back).
@@ -595,12 +606,13 @@ void World::computeForces(double dt) {
   stats_ = {};
   stats_.candidatePairs = work.size();
   contactEnergy_ = 0.0;
+  patches_.clear();
   contactCount_.assign(nBodies, 0);
   maxContactForce_.assign(nBodies, 0.0);
   PairHistories nextHistory;
   nextHistory.reserve(history_.size() + 16);
   for (auto& pw : work) {
-    if (pw.history.empty()) {
+    if (pw.history.empty() && pw.maxOverlap == 0.0) {
       continue;
     }
     const BodyId a = pw.key.first;
@@ -619,6 +631,17 @@ void World::computeForces(double dt) {
     }
     stats_.contactPoints += pw.history.size();
     contactEnergy_ += pw.elasticEnergy;
+    if (settings_.recordContacts && points > 0) {
+      ContactPatch patch;
+      patch.bodyA = a;
+      patch.bodyB = (pw.key.second & kStaticBits) == 0 ? static_cast<std::int64_t>(pw.key.second) : -1;
+      patch.force = pw.forceA;
+      patch.normalForce = pw.normalForce;
+      patch.points = points;
+      // A patch held only by friction and damping can have no normal force: plain mean then.
+      patch.point = pw.normalForce > 0.0 ? Vec3(pw.weightedPoint / pw.normalForce) : Vec3(pw.pointSum / points);
+      patches_.push_back(patch);
+    }
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
     // Guard rails: an overlap this deep means the contact cannot hold (time step, stiffness or
     // speed), and the forces that follow are meaningless; past the middle of a thin part the
@@ -652,7 +675,9 @@ void World::computeForces(double dt) {
           "lower the time step, raise the penalty modulus, or check the initial positions",
           time_, bodies_.describe(a), otherName, pw.maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
     }
-    nextHistory.emplace_back(pw.key, std::move(pw.history));
+    if (!pw.history.empty()) {
+      nextHistory.emplace_back(pw.key, std::move(pw.history));
+    }
   }
   // Pairs that were not examined because none of their bodies is awake keep their friction
   // springs: a sleeping pack wakes with the same contact state it fell asleep with.
@@ -888,6 +913,11 @@ void World::restoreState(const WorldState& s) {
   }
   forcesReady_ = s.forcesReady;
   boxesValid_ = false;
+}
+
+void World::evaluateContacts() {
+  computeForces(timeStep());
+  forcesReady_ = true;
 }
 
 void World::advanceTo(double t) {

@@ -89,6 +89,7 @@ struct WorldSettings {
   double maxOverlapPerInnerDepth = 0.5;
   SleepSettings sleep;
   EnergyGuardSettings energyGuard;
+  bool recordContacts = false;            ///< keep the contact patches of each force evaluation (contactPatches())
 };
 
 /// Surface samples bucketed on a coarse grid over the shape's bounds, so that the narrow phase
@@ -151,6 +152,16 @@ struct StaticConvex {
   /// (exact for boxes and slabs) (unit: m).
   double innerDepth = 0.0;
   MaterialId material = 0;
+};
+
+/// The resultant of one contact pair in the last force evaluation: what a force-chain plot shows.
+struct ContactPatch {
+  BodyId bodyA = 0;                ///< the body pushed by `force`
+  std::int64_t bodyB = -1;         ///< the other body, or -1 for static geometry (a plane or piece)
+  Vec3 point = Vec3::Zero();       ///< normal-force-weighted centre of the engaged points (unit: m)
+  Vec3 force = Vec3::Zero();       ///< total contact force on A; B gets minus it (unit: N)
+  double normalForce = 0.0;        ///< sum of the points' normal forces (unit: N)
+  std::int32_t points = 0;         ///< engaged sample points (unit: -)
 };
 
 /// Why a run had to stop.
@@ -217,6 +228,13 @@ public:
   [[nodiscard]] Quat naturalOrientation(BodyId b) const;
   /// Total mechanical energy: kinetic + gravitational potential (J), contact energy excluded.
   [[nodiscard]] double mechanicalEnergy() const;
+  /// Contact pairs of the last force evaluation, in pair order; empty unless
+  /// settings.recordContacts (or setRecordContacts(true)).
+  [[nodiscard]] const std::vector<ContactPatch>& contactPatches() const { return patches_; }
+  void setRecordContacts(bool on) { settings_.recordContacts = on; }
+  /// Evaluate the contact forces of the current state without stepping (the guard rails apply:
+  /// a deep initial overlap throws SimulationError naming the bodies). For `armour check`.
+  void evaluateContacts();
   /// Elastic energy of the engaged contact points in the last force evaluation (J):
   /// sum of k_point d^2 / 2 (normal springs) and k_t |s|^2 / 2 (friction springs).
   [[nodiscard]] double contactEnergy() const { return contactEnergy_; }
@@ -276,6 +294,7 @@ private:
   /// (bodies added, a restart). Moving a static body by hand needs invalidateBoxes().
   bool boxesValid_ = false;
   StepStatistics stats_;
+  std::vector<ContactPatch> patches_;
   double contactEnergy_ = 0.0;  ///< J, last force evaluation
   double externalWork_ = 0.0;   ///< J, since the start
   double energyMinimum_ = 0.0;  ///< lowest E - W seen at a check (J)

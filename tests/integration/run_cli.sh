@@ -30,6 +30,13 @@ for scene in "$scenes"/broken/*.yaml; do
   [ $code -eq 2 ] || fail "check $name: expected exit 2, got $code: $msg"
   echo "$msg" | grep -q "error: .*$name" || fail "check $name: the file is not named in: $msg"
 done
+# Initial positions the guard rails would stop: check evaluates the first contact forces.
+msg=$("$armour" --log-level off check "$scenes/unrunnable/deep-overlap.yaml" 2>&1 || true)
+echo "$msg" | grep -q "initial positions cannot be run: .*body 'first' and body 'second' overlap by 0.4 m" \
+  || fail "deep initial overlap not explained: $msg"
+msg=$("$armour" --log-level warn check "$scenes/run-smoke.yaml" 2>&1)
+echo "$msg" | grep -q "^initial contacts: [0-9]* candidate pairs, 0 engaged points, deepest overlap 0 m" \
+  || fail "run-smoke: no initial contact summary in: $msg"
 # A fixed time step above the stability limit is a user error too.
 sed 's/^time_step: auto .*/time_step: 0.01/' "$scenes/block-on-slope.yaml" > "$out/long-step.yaml"
 set +e; msg=$("$armour" --log-level off check "$out/long-step.yaml" 2>&1); code=$?; set -e
