@@ -489,8 +489,13 @@ void World::computeForces(double dt) {
       const double sB = bodyScale_[b];
       lengthScale = std::min(lengthScale, bodyDn(b));
       inverseMassSum += bodies_.inverseMass(b);
-      // Both directions, each with half the penalty: symmetric in A and B, and both bodies'
-      // edges and corners are detected.
+      // Both directions, so that both bodies' edges and corners are detected, each weighted by
+      // its probe's sample density: w_A = h_B^2 / (h_A^2 + h_B^2), h = sample spacing (a fixed
+      // fraction of Dn), so w_A + w_B = 1. Equal bodies get half each (symmetric in A and B); a
+      // unit on one 4.6 times its size (mass ratio 100) is measured mostly by its own fine
+      // samples, not by the few coarse samples of the big one that fall on its small face.
+      const double hA2 = bodyDn(a) * bodyDn(a), hB2 = bodyDn(b) * bodyDn(b);
+      const std::array<double, 2> weight{hB2 / (hA2 + hB2), hA2 / (hA2 + hB2)};
       for (int dir = 0; dir < 2; ++dir) {
         const BodyId probe = dir == 0 ? a : b;
         const BodyId target = dir == 0 ? b : a;
@@ -546,7 +551,8 @@ void World::computeForces(double dt) {
             if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
               const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
               const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
-              const double area = -sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
+              // The direction's weight scales the tributary area (k = E_p a / L is linear in a).
+              const double area = -weight[dir] * sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
               if (area > 0.0) {
                 engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi * st, area});
               }
@@ -555,7 +561,6 @@ void World::computeForces(double dt) {
         });
       }
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
-      params.penaltyModulus *= 0.5;
     }
     if (engaged.empty()) {
       continue;
