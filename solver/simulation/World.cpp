@@ -496,7 +496,22 @@ void World::computeForces(double dt) {
       // samples, not by the few coarse samples of the big one that fall on its small face.
       const double hA2 = bodyDn(a) * bodyDn(a), hB2 = bodyDn(b) * bodyDn(b);
       const std::array<double, 2> weight{hB2 / (hA2 + hB2), hA2 / (hA2 + hB2)};
-      for (int dir = 0; dir < 2; ++dir) {
+      // Near misses first: in a rough pile most candidate pairs never touch (the boxes overlap,
+      // the bodies do not: a rock under a Core-Loc's box but between its legs). A ball of radius
+      // R around a body's centroid holds the body; if the other body's true distance at that
+      // centre exceeds R, they are apart. The interpolated phi is at most the true distance plus
+      // sqrt(3) h (section 7 of docs/theory.md), so phi > R + sqrt(3) h proves it, for either body.
+      bool apart = false;
+      for (int dir = 0; dir < 2 && !apart; ++dir) {
+        const BodyId probe = dir == 0 ? a : b;
+        const BodyId target = dir == 0 ? b : a;
+        const ShapeModel& ps = dir == 0 ? shapeA : shapeB;
+        const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
+        const double st = bodyScale_[target];
+        const Vec3 centre = bodies_.orientation(target).conjugate() * (bodies_.position(probe) - bodies_.position(target)) / st;
+        apart = ts.levelSet->value(centre) > (ps.radius * bodyScale_[probe]) / st + std::sqrt(3.0) * ts.levelSet->cellSize();
+      }
+      for (int dir = 0; dir < 2 && !apart; ++dir) {
         const BodyId probe = dir == 0 ? a : b;
         const BodyId target = dir == 0 ? b : a;
         const ShapeModel& ps = dir == 0 ? shapeA : shapeB;
