@@ -311,6 +311,17 @@ double LevelSet::value(const Vec3& local) const {
   return d2 > 0.0 ? phi + std::sqrt(d2) : phi;
 }
 
+double LevelSet::distanceLowerBound(const Vec3& local) const {
+  const bool inGrid = (local.array() >= gridBounds_.min.array()).all() && (local.array() <= gridBounds_.max.array()).all();
+  if (inGrid) {
+    // phi is a convex combination of exact node distances within sqrt(3) h: phi <= d + sqrt(3) h.
+    return interpolateValue(local) - std::sqrt(3.0) * h_ - 1e-6 * h_;
+  }
+  // Outside the grid value() follows a path through the grid box, which can be longer than the
+  // shortest one: only the distance to the mesh's bounding box is a safe bound there.
+  return std::sqrt(boxDistanceSquared(local, meshBounds_.min, meshBounds_.max));
+}
+
 void LevelSet::interpolate(const Vec3& x, double& phi, Vec3& gradient) const {
   int cell[3];
   double f[3];
@@ -416,8 +427,10 @@ bool LevelSet::mayPenetrate(const Box3& localBox, double scale) const {
   // mean of node differences over one cell edge, at most h apart in value): the minimum over the
   // box is at least phi(centre) minus the sum of the half-extents. The small allowance covers the
   // float rounding of the node values.
+  // The true distance d is 1-Lipschitz and phi < 0 needs d < sqrt(3) h (above): no point of the
+  // box can have phi < 0 when the lower bound of d at the centre exceeds the half-diagonal plus that.
   const Vec3 half = 0.5 * box.size();
-  return distance(box.centre()) <= half.sum() + 1e-6 * h_;
+  return distanceLowerBound(box.centre()) <= half.norm() + std::sqrt(3.0) * h_;
 }
 
 } // namespace armour::contact

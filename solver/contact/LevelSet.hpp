@@ -141,6 +141,10 @@ public:
   /// Same as distance(local): the value alone, without the gradient; equals query(local).phi
   /// (the narrow phase tests this first and queries only the samples found inside).
   [[nodiscard]] double value(const Vec3& local) const;
+  /// A lower bound of the true distance from `local` to the surface (unit: m; negative inside):
+  /// phi - sqrt(3) h inside the grid, the distance to the mesh's bounding box outside it (where
+  /// value() can exceed the true distance). For culling: phi(x) < 0 needs this < sqrt(3) h at x.
+  [[nodiscard]] double distanceLowerBound(const Vec3& local) const;
   /// Gradient of the interpolant at `local` (unit: -): the outward direction, not normalised.
   [[nodiscard]] Vec3 gradient(const Vec3& local) const;
   /// Unit outward direction at `local`, or zero at medial-axis points (see LevelSetQuery).
@@ -153,9 +157,9 @@ public:
   [[nodiscard]] double distance(const Vec3& local, double scale) const { return scale * distance(local / scale); }
   [[nodiscard]] LevelSetQuery query(const Vec3& local, double scale) const;
 
-  /// False when no point of `localBox` can have phi < 0 (the box misses the mesh bounds, or the
-  /// distance at its centre exceeds its half-extent sum: the interpolant changes by at most
-  /// |dx| + |dy| + |dz| between two points). True means "look closer".
+  /// False when no point of `localBox` can have phi < 0 (the box misses the grown mesh bounds, or
+  /// the lower bound of the distance at its centre exceeds its half-diagonal plus sqrt(3) h).
+  /// True means "look closer".
   [[nodiscard]] bool mayPenetrate(const Box3& localBox, double scale = 1.0) const;
 
   [[nodiscard]] bool empty() const { return values_.empty(); }

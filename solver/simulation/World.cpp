@@ -174,6 +174,18 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
   buildBuckets(*model);
   const auto& values = model->levelSet->values();
   model->innerDepth = values.empty() ? 0.0 : -static_cast<double>(*std::min_element(values.begin(), values.end()));
+  const double h = model->levelSet->cellSize();
+  if (model->innerDepth < 0.25 * h) {
+    // No grid node a cell deep inside: the interpolated distance barely (or never) goes negative,
+    // so other bodies' points would pass through the shape unseen.
+    const double thickness = model->bounds.size().minCoeff();
+    const double dn = model->levelSet->nominalDiameter();
+    core::failInput("shape '" + name + "'",
+                    "is too thin for its level set: {:.3g} m across at the thinnest (bounding box), the deepest "
+                    "grid node {:.3g} m inside, but the grid cell is {:.3g} m (Dn / {:.3g}); raise "
+                    "contact.level_set_cells_per_dn to at least {:.0f}, or model the part thicker",
+                    thickness, std::max(model->innerDepth, 0.0), h, dn / h, std::ceil(4.0 * dn / thickness));
+  }
   core::logger("simulation")
       ->debug("shape '{}': {} triangles, {} samples, level set {}x{}x{} (h = {:.4g} m)", name,
               model->mesh.triangleCount(), model->samples->size(), model->levelSet->nodeCounts()[0],
@@ -499,8 +511,8 @@ void World::computeForces(double dt) {
       // Near misses first: in a rough pile most candidate pairs never touch (the boxes overlap,
       // the bodies do not: a rock under a Core-Loc's box but between its legs). A ball of radius
       // R around a body's centroid holds the body; if the other body's true distance at that
-      // centre exceeds R, they are apart. The interpolated phi is at most the true distance plus
-      // sqrt(3) h (section 7 of docs/theory.md), so phi > R + sqrt(3) h proves it, for either body.
+      // centre exceeds R, they are apart (LevelSet::distanceLowerBound: phi - sqrt(3) h inside the
+      // grid, the distance to the mesh box outside it), for either body.
       bool apart = false;
       for (int dir = 0; dir < 2 && !apart; ++dir) {
         const BodyId probe = dir == 0 ? a : b;
@@ -509,7 +521,7 @@ void World::computeForces(double dt) {
         const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
         const double st = bodyScale_[target];
         const Vec3 centre = bodies_.orientation(target).conjugate() * (bodies_.position(probe) - bodies_.position(target)) / st;
-        apart = ts.levelSet->value(centre) > (ps.radius * bodyScale_[probe]) / st + std::sqrt(3.0) * ts.levelSet->cellSize();
+        apart = ts.levelSet->distanceLowerBound(centre) > (ps.radius * bodyScale_[probe]) / st;
       }
       for (int dir = 0; dir < 2 && !apart; ++dir) {
         const BodyId probe = dir == 0 ? a : b;
@@ -541,11 +553,11 @@ void World::computeForces(double dt) {
 
           // Whole bucket first, by the sphere around its samples (radius r, centre c, in the
           // target frame): an interpolated phi < 0 at x needs a true distance below sqrt(3) h
-          // there, and the true distance at x is at least that at c minus r, which is at least
-          // phi(c) - sqrt(3) h; so phi(c) > r + 2 sqrt(3) h rules out the whole bucket.
+          // there, and the true distance at x is at least that at c minus r; so a lower bound
+          // of the distance at c above r + sqrt(3) h rules out the whole bucket.
           const Vec3 bc = Rrel * ps.buckets.sphereCentre[cell] + trel;
           const double r = ps.buckets.sphereRadius[cell] * (sp / st);
-          if (ls.value(bc) > r + 2.0 * std::sqrt(3.0) * h + 1e-6 * h) {
+          if (ls.distanceLowerBound(bc) - r > std::sqrt(3.0) * h) {
             return;
           }
 
