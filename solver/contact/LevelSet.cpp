@@ -278,20 +278,28 @@ LevelSet::LevelSet(const TriangleMesh& mesh, const LevelSetSettings& settings, c
                                  source, n_[0], n_[1], n_[2], h_, dn_ / h_, memoryBytes() / 1024.0, buildSeconds_);
 }
 
-double LevelSet::interpolateValue(const Vec3& x) const {
+std::size_t LevelSet::locate(const Vec3& x, double f[3]) const {
   int cell[3];
-  double f[3];
   for (int k = 0; k < 3; ++k) {
+    // Clamp to the last cell so a point on the upper box face uses the cell below it (f = 1).
+    // Written so that a NaN coordinate lands in cell 0 with f = NaN: the result is NaN, never
+    // an out-of-range read.
     const double u = (x[k] - origin_[k]) * invH_;
     const double top = n_[k] - 2;
     const double clamped = u > 0.0 ? std::min(std::floor(u), top) : 0.0;
     cell[k] = static_cast<int>(clamped);
     f[k] = u - clamped;
   }
+  const auto sy = static_cast<std::size_t>(n_[0]);
+  const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
+  return static_cast<std::size_t>(cell[0]) + sy * static_cast<std::size_t>(cell[1]) + sz * static_cast<std::size_t>(cell[2]);
+}
+
+double LevelSet::interpolateValue(const Vec3& x) const {
+  double f[3];
   const std::size_t sy = static_cast<std::size_t>(n_[0]);
   const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
-  const float* v = values_.data() + static_cast<std::size_t>(cell[0]) + sy * static_cast<std::size_t>(cell[1]) +
-                   sz * static_cast<std::size_t>(cell[2]);
+  const float* v = values_.data() + locate(x, f);
   // Same arithmetic as interpolate(): the two agree bit for bit on phi.
   const double v000 = v[0], v100 = v[1], v010 = v[sy], v110 = v[1 + sy];
   const double v001 = v[sz], v101 = v[1 + sz], v011 = v[sy + sz], v111 = v[1 + sy + sz];
@@ -323,23 +331,11 @@ double LevelSet::distanceLowerBound(const Vec3& local) const {
 }
 
 void LevelSet::interpolate(const Vec3& x, double& phi, Vec3& gradient) const {
-  int cell[3];
   double f[3];
-  for (int k = 0; k < 3; ++k) {
-    // Clamp to the last cell so a point on the upper box face uses the cell below it (f = 1).
-    // Written so that a NaN coordinate lands in cell 0 with f = NaN: the result is NaN, never
-    // an out-of-range read.
-    const double u = (x[k] - origin_[k]) * invH_;
-    const double top = n_[k] - 2;
-    const double clamped = u > 0.0 ? std::min(std::floor(u), top) : 0.0;
-    cell[k] = static_cast<int>(clamped);
-    f[k] = u - clamped;
-  }
   const std::size_t sx = 1;
   const std::size_t sy = static_cast<std::size_t>(n_[0]);
   const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
-  const std::size_t base = static_cast<std::size_t>(cell[0]) + sy * static_cast<std::size_t>(cell[1]) +
-                           sz * static_cast<std::size_t>(cell[2]);
+  const std::size_t base = locate(x, f);
   const double v000 = values_[base];
   const double v100 = values_[base + sx];
   const double v010 = values_[base + sy];

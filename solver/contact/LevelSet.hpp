@@ -185,6 +185,8 @@ public:
 private:
   /// Interpolant and its gradient at a point inside the grid box.
   void interpolate(const Vec3& x, double& phi, Vec3& gradient) const;
+  /// Index of node (0,0,0) of the cell holding x (clamped to the grid) and x's fractions in it.
+  std::size_t locate(const Vec3& x, double f[3]) const;
   /// The interpolant alone (no gradient): the cheap test most samples fail.
   double interpolateValue(const Vec3& x) const;
 
