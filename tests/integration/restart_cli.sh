@@ -123,7 +123,7 @@ sed 's/friction: 0.5,/friction: 0.6,/' "$scene" > "$out/changed.yaml"
 cp -r "$out/full" "$out/changed"
 set +e; msg=$("$armour" --log-level off run "$out/changed.yaml" -o "$out/changed" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "changed scene: expected exit 2, got $code: $msg"
-echo "$msg" | grep -q "checkpoint.nc: scene_fingerprint .* the scene changed .*friction static = 0.5.*friction static = 0.6" \
+grep -q "checkpoint.nc: scene_fingerprint .* the scene changed .*friction static = 0.5.*friction static = 0.6" <<< "$msg" \
   || fail "changed scene: the message does not name the change: $msg"
 cmp "$out/full/final_state.csv" "$out/changed/final_state.csv" || fail "a refused restart changed the folder"
 [ ! -f "$out/changed/run.1.log" ] || fail "a refused restart moved the run log"
@@ -131,7 +131,7 @@ cmp "$out/full/final_state.csv" "$out/changed/final_state.csv" || fail "a refuse
 # Refused: nothing to restart from.
 set +e; msg=$(run -o "$out/empty" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "no checkpoint: expected exit 2, got $code: $msg"
-echo "$msg" | grep -q "empty/checkpoint.nc: no checkpoint here" || fail "no checkpoint: unclear message: $msg"
+grep -q "empty/checkpoint.nc: no checkpoint here" <<< "$msg" || fail "no checkpoint: unclear message: $msg"
 
 # A guard-rail stop writes checkpoint_at_error.nc beside state_at_error.csv and names both; a
 # restart from the state of a failed step is refused.
@@ -146,16 +146,16 @@ static:
 EOF
 set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" --threads 1 -o "$out/overlap" 2>&1); code=$?; set -e
 [ $code -eq 3 ] || fail "overlapping start: expected exit 3, got $code: $msg"
-echo "$msg" | grep -q "state_at_error.csv, .*checkpoint_at_error.nc" || fail "the error checkpoint is not named: $msg"
+grep -q "state_at_error.csv, .*checkpoint_at_error.nc" <<< "$msg" || fail "the error checkpoint is not named: $msg"
 [ -f "$out/overlap/checkpoint_at_error.nc" ] || fail "no checkpoint_at_error.nc"
 if command -v ncdump > /dev/null; then
   header=$(ncdump -h "$out/overlap/checkpoint_at_error.nc") # (grep -q in a pipe would cut ncdump short: pipefail)
-  echo "$header" | grep -q ":stop_reason = .*body .*a.* and body .*b.* overlap" \
+  grep -q ":stop_reason = .*body .*a.* and body .*b.* overlap" <<< "$header" \
     || fail "checkpoint_at_error.nc has no stop_reason naming the bodies"
 fi
 cp "$out/overlap/checkpoint_at_error.nc" "$out/overlap/checkpoint.nc"
 set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" -o "$out/overlap" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "restart from an error checkpoint: expected exit 2, got $code: $msg"
-echo "$msg" | grep -q "stopped on an error" || fail "restart from an error checkpoint: unclear message: $msg"
+grep -q "stopped on an error" <<< "$msg" || fail "restart from an error checkpoint: unclear message: $msg"
 
 echo "restart CLI: all checks passed"

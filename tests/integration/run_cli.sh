@@ -13,35 +13,35 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 for scene in block-on-slope dolos-pile run-smoke; do
   set +e; msg=$("$armour" --log-level warn check "$scenes/$scene.yaml" 2>&1); code=$?; set -e
   [ $code -eq 0 ] || fail "check $scene.yaml exited $code: $msg"
-  echo "$msg" | grep -q "^time step: [0-9.e+-]* s (auto: 0.2 x the stable step)" || fail "no time step in: $msg"
-  echo "$msg" | grep -q "^stable time step: [0-9.e+-]* s" || fail "no stable time step in: $msg"
-  echo "$msg" | grep -q "^check: .*$scene.yaml is valid" || fail "no verdict in: $msg"
+  grep -q "^time step: [0-9.e+-]* s (auto: 0.2 x the stable step)" <<< "$msg" || fail "no time step in: $msg"
+  grep -q "^stable time step: [0-9.e+-]* s" <<< "$msg" || fail "no stable time step in: $msg"
+  grep -q "^check: .*$scene.yaml is valid" <<< "$msg" || fail "no verdict in: $msg"
 done
 msg=$("$armour" --log-level warn check "$scenes/dolos-pile.yaml" 2>&1)
-echo "$msg" | grep -q "^bodies: 12 (12 dynamic, 0 fixed)" || fail "dolos-pile: expected 12 bodies in: $msg"
-echo "$msg" | grep -q "^static pieces: 228 (4 half-spaces, 224 convex pieces, 0 fixed meshes)" \
+grep -q "^bodies: 12 (12 dynamic, 0 fixed)" <<< "$msg" || fail "dolos-pile: expected 12 bodies in: $msg"
+grep -q "^static pieces: 228 (4 half-spaces, 224 convex pieces, 0 fixed meshes)" <<< "$msg" \
   || fail "dolos-pile: expected 4 walls and 224 height-field pieces in: $msg"
-echo "$msg" | grep -q "^  time_step = auto" || fail "dolos-pile: describeScene missing from: $msg"
+grep -q "^  time_step = auto" <<< "$msg" || fail "dolos-pile: describeScene missing from: $msg"
 
 # Broken scenes: exit 2, the file named in the message.
 for scene in "$scenes"/broken/*.yaml; do
   name=$(basename "$scene")
   set +e; msg=$("$armour" --log-level off check "$scene" 2>&1); code=$?; set -e
   [ $code -eq 2 ] || fail "check $name: expected exit 2, got $code: $msg"
-  echo "$msg" | grep -q "error: .*$name" || fail "check $name: the file is not named in: $msg"
+  grep -q "error: .*$name" <<< "$msg" || fail "check $name: the file is not named in: $msg"
 done
 # Initial positions the guard rails would stop: check evaluates the first contact forces.
 msg=$("$armour" --log-level off check "$scenes/unrunnable/deep-overlap.yaml" 2>&1 || true)
-echo "$msg" | grep -q "initial positions cannot be run: .*body 'first' and body 'second' overlap by 0.4 m" \
+grep -q "initial positions cannot be run: .*body 'first' and body 'second' overlap by 0.4 m" <<< "$msg" \
   || fail "deep initial overlap not explained: $msg"
 msg=$("$armour" --log-level warn check "$scenes/run-smoke.yaml" 2>&1)
-echo "$msg" | grep -q "^initial contacts: [0-9]* candidate pairs, 0 engaged points, deepest overlap 0 m" \
+grep -q "^initial contacts: [0-9]* candidate pairs, 0 engaged points, deepest overlap 0 m" <<< "$msg" \
   || fail "run-smoke: no initial contact summary in: $msg"
 # A fixed time step above the stability limit is a user error too.
 sed 's/^time_step: auto .*/time_step: 0.01/' "$scenes/block-on-slope.yaml" > "$out/long-step.yaml"
 set +e; msg=$("$armour" --log-level off check "$out/long-step.yaml" 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "a 10 ms time step was accepted (exit $code): $msg"
-echo "$msg" | grep -q "long-step.yaml: time_step: .*stability limit" || fail "time-step error unclear: $msg"
+grep -q "long-step.yaml: time_step: .*stability limit" <<< "$msg" || fail "time-step error unclear: $msg"
 
 # A run: the smoke scene (two cubes dropped on a floor, 0.3 s), written to --output.
 set +e; log=$("$armour" run "$scenes/run-smoke.yaml" --threads 1 -o "$out/smoke" 2>&1); code=$?; set -e
@@ -90,7 +90,7 @@ static:
 EOF
 set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" -o "$out/overlap" 2>&1); code=$?; set -e
 [ $code -eq 3 ] || fail "overlapping start: expected exit 3, got $code: $msg"
-echo "$msg" | grep -q "overlap.yaml: the simulation stopped: .*body 'a' and body 'b' overlap" \
+grep -q "overlap.yaml: the simulation stopped: .*body 'a' and body 'b' overlap" <<< "$msg" \
   || fail "overlapping start: unclear message: $msg"
 [ "$(wc -l < "$out/overlap/state_at_error.csv")" -eq 3 ] || fail "no state_at_error.csv with 2 rows"
 echo "run CLI: all checks passed"

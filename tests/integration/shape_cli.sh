@@ -16,8 +16,8 @@ for shape in $shapes; do
   for ext in stl obj vtp; do
     "$armour" --log-level off shape export "$shape" --dn $dn -o "$out/$shape.$ext" >/dev/null
     info=$("$armour" --log-level off shape info "$out/$shape.$ext")
-    echo "$info" | grep -q "^watertight:    yes" || fail "$shape.$ext not watertight: $info"
-    echo "$info" | grep -q "^valid solid:   yes" || fail "$shape.$ext not valid: $info"
+    grep -q "^watertight:    yes" <<< "$info" || fail "$shape.$ext not watertight: $info"
+    grep -q "^valid solid:   yes" <<< "$info" || fail "$shape.$ext not valid: $info"
     v=$(echo "$info" | awk '/^volume:/ {print $2}')
     awk -v v="$v" -v e="$expected" 'BEGIN { r = (v - e) / e; if (r < 0) r = -r; exit !(r < 1e-6) }' \
       || fail "$shape.$ext volume $v, expected $expected"
@@ -33,7 +33,7 @@ expect_error() { # expect_error "fragment" command...
   local fragment="$1"; shift
   set +e; msg=$("$@" 2>&1); code=$?; set -e
   [ $code -eq 2 ] || fail "expected exit 2 from '$*', got $code: $msg"
-  echo "$msg" | grep -q -- "$fragment" || fail "expected '$fragment' in: $msg"
+  grep -q -- "$fragment" <<< "$msg" || fail "expected '$fragment' in: $msg"
 }
 expect_error "valid shapes are" "$armour" shape export blob --dn 1 -o "$out/x.stl"
 expect_error "exactly one of --volume" "$armour" shape export cube -o "$out/x.stl"
