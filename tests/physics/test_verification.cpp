@@ -2,7 +2,10 @@
 // Verification of the rigid solver (issue 3):
 //  - tunnelling: a 1 m concrete cube thrown at 20 m/s at a wall is stopped by a thick wall, and by
 //    a thin wall (a static convex piece or a thin fixed body) it is either stopped or the run is
-//    refused with a message saying it would tunnel; it never ends up silently on the far side;
+//    refused with a message saying it would tunnel (a slab thinner than a level-set cell is refused
+//    as input); it never ends up silently on the far side;
+//  - contact detection: an overlap of two dolosse whose centroids lie outside each other's level-set
+//    grid is found (it was missed by a cull, and units passed into each other in a pile);
 //  - convergence: the block sliding down an incline against the closed-form solution of the
 //    penalty model, for dt, dt/2 and dt/4, with the observed order of the error, and against the
 //    rigid-body x(t) = g (sin a - mu cos a) t^2 / 2;
@@ -224,9 +227,10 @@ TEST(Tunnelling, ThinConvexWallStopsTheCubeOrRefusesTheRun) {
 TEST(Tunnelling, ThinFixedBodyStopsTheCubeOrRefusesTheRun) {
   // The same with the wall a fixed body (a box mesh with its level set and samples): the contact
   // is then found both ways (the cube's samples in the wall's level set and the wall's samples in
-  // the cube's), at half the penalty each. Measured: the 0.1 m body stops the face-first cube
-  // (overlap 6.9 mm) and refuses the corner-first one; the 0.02 m body refuses both, at the first
-  // touch (see ThinFixedBodyIsNotRefusedAtAGentleTouch).
+  // the cube's). Measured: the 0.1 m body stops the face-first cube (overlap 6.8 mm) and refuses
+  // the corner-first one (13 mm, more than half the inner depth its level-set nodes give, 0.026 m;
+  // the true half thickness is 0.05 m); the 0.02 m slab is refused as input, being thinner than a
+  // level-set cell (0.0285 m).
   for (double thickness : {0.1, 0.02}) {
     for (Leading leading : {Leading::Face, Leading::Corner}) {
       expectStoppedOrRefused(throwCube(WallKind::FixedBody, thickness, leading),
@@ -252,9 +256,9 @@ TEST(Tunnelling, ThinFixedBodyIsNotRefusedAtAGentleTouch) {
   // (v sqrt(m / K)), a tenth of the slab's half thickness: it must simply be stopped. A solver that
   // cannot represent the slab (its level-set cells, Dn / 24 = 0.029 m, are wider than the slab) may
   // instead refuse the shape when it is added, with an input error that says so; what it must not do
-  // is refuse the run at the first touch. At the time of writing it does: the tunnelling guard takes
-  // a shape's inner depth from its level-set nodes (-min phi), no node lies inside a slab thinner than
-  // a cell, and the slab's "inner depth" comes out negative (-0.00425 m), so any overlap trips it.
+  // is refuse the run at the first touch, as it did when the tunnelling guard took the slab's inner
+  // depth from its level-set nodes (-min phi): no node lay inside the slab, the "inner depth" came
+  // out negative (-0.00425 m) and any overlap tripped the guard. (Now the slab is refused as input.)
   WorldSettings settings;
   settings.gravity = Vec3::Zero();
   settings.sleep.enabled = false;
@@ -298,10 +302,10 @@ TEST(ContactDetection, OverlappingDolosseAreFoundWhenACentroidLiesOutsideTheOthe
   // 2.17 m apart: A's centroid lies outside B's level-set grid and B's outside A's. The contact
   // must be found. (Found in the pile of test_dolos_pile: the lattice collapse tripped the energy
   // guard after contacts 0.13 m deep appeared from one step to the next. A pose from a random
-  // search in which 3 of 32 such overlaps were missed. At the time of writing it fails: the
-  // near-miss test before the sample loops takes LevelSet::value at the other centroid as a lower
-  // bound of the distance, but outside the grid value() returns phi at the clamped point plus the
-  // distance to it, which can exceed the true distance.)
+  // search in which 3 of 32 such overlaps were missed: the near-miss test before the sample loops
+  // took LevelSet::value at the other centroid as a lower bound of the distance, but outside the
+  // grid value() is phi at the clamped point plus the distance to it, which can exceed the true
+  // distance.)
   WorldSettings settings;
   settings.gravity = Vec3::Zero();
   settings.sleep.enabled = false;
