@@ -135,26 +135,17 @@ grep -q "empty/checkpoint.nc: no checkpoint here" <<< "$msg" || fail "no checkpo
 
 # A guard-rail stop writes checkpoint_at_error.nc beside state_at_error.csv and names both; a
 # restart from the state of a failed step is refused.
-cat > "$out/overlap.yaml" <<'EOF'
-duration: 0.1
-materials: {concrete: {density: 2400, friction: 0.75, restitution: 0.05}}
-bodies:
-  - {name: a, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.5]}
-  - {name: b, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.9]}
-static:
-  - {type: plane, material: concrete}
-EOF
-set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" --threads 1 -o "$out/overlap" 2>&1); code=$?; set -e
+set +e; msg=$("$armour" --log-level off run "$scenes/unrunnable/deep-overlap.yaml" --threads 1 -o "$out/overlap" 2>&1); code=$?; set -e
 [ $code -eq 3 ] || fail "overlapping start: expected exit 3, got $code: $msg"
 grep -q "state_at_error.csv, .*checkpoint_at_error.nc" <<< "$msg" || fail "the error checkpoint is not named: $msg"
 [ -f "$out/overlap/checkpoint_at_error.nc" ] || fail "no checkpoint_at_error.nc"
 if command -v ncdump > /dev/null; then
   header=$(ncdump -h "$out/overlap/checkpoint_at_error.nc") # (grep -q in a pipe would cut ncdump short: pipefail)
-  grep -q ":stop_reason = .*body .*a.* and body .*b.* overlap" <<< "$header" \
+  grep -q ":stop_reason = .*body .*first.* and body .*second.* overlap" <<< "$header" \
     || fail "checkpoint_at_error.nc has no stop_reason naming the bodies"
 fi
 cp "$out/overlap/checkpoint_at_error.nc" "$out/overlap/checkpoint.nc"
-set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" -o "$out/overlap" --restart 2>&1); code=$?; set -e
+set +e; msg=$("$armour" --log-level off run "$scenes/unrunnable/deep-overlap.yaml" -o "$out/overlap" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "restart from an error checkpoint: expected exit 2, got $code: $msg"
 grep -q "stopped on an error" <<< "$msg" || fail "restart from an error checkpoint: unclear message: $msg"
 

@@ -79,18 +79,9 @@ set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration 
 
 # Bodies that start inside each other trip the overlap guard rail: exit 3, the bodies named, the
 # state at the stop written.
-cat > "$out/overlap.yaml" <<'EOF'
-duration: 0.1
-materials: {concrete: {density: 2400, friction: 0.75, restitution: 0.05}}
-bodies:
-  - {name: a, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.5]}
-  - {name: b, shape: cube, dn: 1, material: concrete, position: [0, 0, 0.9]}
-static:
-  - {type: plane, material: concrete}
-EOF
-set +e; msg=$("$armour" --log-level off run "$out/overlap.yaml" -o "$out/overlap" 2>&1); code=$?; set -e
+set +e; msg=$("$armour" --log-level off run "$scenes/unrunnable/deep-overlap.yaml" -o "$out/overlap" 2>&1); code=$?; set -e
 [ $code -eq 3 ] || fail "overlapping start: expected exit 3, got $code: $msg"
-grep -q "overlap.yaml: the simulation stopped: .*body 'a' and body 'b' overlap" <<< "$msg" \
+grep -q "deep-overlap.yaml: the simulation stopped: .*body 'first' and body 'second' overlap" <<< "$msg" \
   || fail "overlapping start: unclear message: $msg"
 [ "$(wc -l < "$out/overlap/state_at_error.csv")" -eq 3 ] || fail "no state_at_error.csv with 2 rows"
 echo "run CLI: all checks passed"
