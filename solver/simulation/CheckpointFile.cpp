@@ -361,7 +361,26 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
                              "force of the last force evaluation (contacts and external loads; gravity excluded)");
     const int torque = define("torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
                               "torque about the centre of mass of the last force evaluation, world frame");
-    for (int var : {position, velocity, momentum, force, torque}) {
+    const int externalForce = define("external_force", NC_DOUBLE, {bodyDim, vecDim}, "N",
+                                     "load stages' force of the last force evaluation (hydrodynamics)");
+    const int externalTorque = define("external_torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
+                                      "load stages' torque about the centre of mass, last force evaluation");
+    const int sleepLoad = define("sleep_load", NC_DOUBLE, {bodyDim, vecDim}, "N",
+                                 "load stages' force when the body fell asleep (wake logic)");
+    // Each load stage's own state (held loads, update times) as a flat array named after the stage.
+    std::vector<int> stageVars;
+    for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
+      int dim = -1;
+      const std::string dimName = fmt::format("load_stage_{}_length", k);
+      w.check(nc_def_dim(ncid, dimName.c_str(), std::max<std::size_t>(1, s.loadStages[k].second.size()), &dim),
+              "define a load stage dimension");
+      const std::string varName = fmt::format("load_stage_{}", k);
+      stageVars.push_back(define(varName.c_str(), NC_DOUBLE, {dim}, nullptr, "state of a load stage"));
+      w.text(ncid, stageVars.back(), "stage_name", s.loadStages[k].first);
+      const auto used = static_cast<unsigned long long>(s.loadStages[k].second.size());
+      w.check(nc_put_att_ulonglong(ncid, stageVars.back(), "used_length", NC_UINT64, 1, &used), "write an attribute");
+    }
+    for (int var : {position, velocity, momentum, force, torque, externalForce, externalTorque, sleepLoad}) {
       w.text(ncid, var, "comment", kAxesComment);
     }
     const int motion = define("motion_type", NC_UBYTE, {bodyDim}, "1", "motion type");
@@ -420,6 +439,9 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
       putVec(momentum, &BodyState::angularMomentum);
       putVec(force, &BodyState::force);
       putVec(torque, &BodyState::torque);
+      putVec(externalForce, &BodyState::externalForce);
+      putVec(externalTorque, &BodyState::externalTorque);
+      putVec(sleepLoad, &BodyState::sleepLoad);
       buffer.resize(4 * n);
       for (std::size_t i = 0; i < n; ++i) {
         const auto& q = s.bodies[i].orientation;
@@ -450,6 +472,11 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
         }
         put(names, text);
       }
+    }
+    for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
+      std::vector<double> values = s.loadStages[k].second;
+      values.resize(std::max<std::size_t>(1, values.size()), 0.0);
+      put(stageVars[k], values);
     }
     if (m > 0) {
       std::vector<unsigned> firsts(m), seconds(m), keys(m);
@@ -584,6 +611,34 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
   r.get("rest_time", r.variable("rest_time", NC_DOUBLE, {bodyDim}), n, rests);
   r.get("contact_count", r.variable("contact_count", NC_INT, {bodyDim}), n, counts);
   r.get("max_contact_force", r.variable("max_contact_force", NC_DOUBLE, {bodyDim}), n, maxForces);
+  // Load-stage data: absent in checkpoints of runs without load stages (zero then).
+  std::vector<double> externalForces(3 * n, 0.0), externalTorques(3 * n, 0.0), sleepLoads(3 * n, 0.0);
+  if (nc_inq_varid(r.id(), "external_force", &unused) == NC_NOERR) {
+    r.get("external_force", r.variable("external_force", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalForces);
+    r.get("external_torque", r.variable("external_torque", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalTorques);
+    r.get("sleep_load", r.variable("sleep_load", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, sleepLoads);
+  }
+  for (std::size_t k = 0;; ++k) {
+    const std::string varName = fmt::format("load_stage_{}", k);
+    if (nc_inq_varid(r.id(), varName.c_str(), &unused) != NC_NOERR) {
+      break;
+    }
+    int dim = -1;
+    const std::size_t length = r.dimension(fmt::format("load_stage_{}_length", k).c_str(), dim);
+    std::vector<double> values;
+    const int var = r.variable(varName.c_str(), NC_DOUBLE, {dim});
+    r.get(varName.c_str(), var, length, values);
+    std::size_t nameLength = 0;
+    unsigned long long used = 0;
+    if (nc_inq_attlen(r.id(), var, "stage_name", &nameLength) != NC_NOERR ||
+        nc_get_att_ulonglong(r.id(), var, "used_length", &used) != NC_NOERR || used > length) {
+      r.damaged(fmt::format("variable '{}'", varName), "lacks a valid stage_name or used_length attribute");
+    }
+    std::string name(nameLength, '\0');
+    nc_get_att_text(r.id(), var, "stage_name", name.data());
+    values.resize(used);
+    s.loadStages.emplace_back(name, std::move(values));
+  }
   if (nc_inq_varid(r.id(), "body_name", &unused) == NC_NOERR) {
     int strDim = -1;
     const std::size_t length = r.dimension("name_strlen", strDim);
@@ -624,6 +679,9 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     b.restTime = rests[i];
     b.contactCount = counts[i];
     b.maxContactForce = maxForces[i];
+    b.externalForce = vec3(externalForces, i);
+    b.externalTorque = vec3(externalTorques, i);
+    b.sleepLoad = vec3(sleepLoads, i);
     requireFinite("position", i, b.position.allFinite());
     requireFinite("orientation", i, b.orientation.coeffs().allFinite());
     requireFinite("velocity", i, b.velocity.allFinite());

@@ -378,7 +378,7 @@ void World::updateBoxes() {
   }
 }
 
-void World::computeForces(double dt) {
+void World::computeForces(double dt, double stateTime) {
   bodies_.clearForces();
   updateBoxes();
   broadPhase_.findPairs(boxes_, active_, pairs_);
@@ -723,6 +723,58 @@ void World::computeForces(double dt) {
   // examined or kept).
   std::sort(nextHistory.begin(), nextHistory.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   history_ = std::move(nextHistory);
+  applyLoadStages(stateTime);
+}
+
+void World::addLoadStage(std::shared_ptr<LoadStage> stage) {
+  if (!stage) {
+    throw std::invalid_argument("World::addLoadStage: null stage");
+  }
+  loadStages_.push_back(std::move(stage));
+  forcesReady_ = false;
+}
+
+void World::applyLoadStages(double stateTime) {
+  const std::size_t n = bodies_.size();
+  if (loadStages_.empty()) {
+    externalForce_.clear();
+    externalTorque_.clear();
+    return;
+  }
+  externalForce_.assign(n, Vec3::Zero());
+  externalTorque_.assign(n, Vec3::Zero());
+  for (const auto& stage : loadStages_) {
+    stageForce_.assign(n, Vec3::Zero());
+    stageTorque_.assign(n, Vec3::Zero());
+    stage->apply(*this, stateTime, stageForce_, stageTorque_);
+    for (std::size_t b = 0; b < n; ++b) {
+      if (!stageForce_[b].allFinite() || !stageTorque_[b].allFinite()) {
+        throw SimulationError(fmt::format("t = {:.6g} s: the '{}' loads on {} are not finite (force {}, {}, {}); "
+                                          "check the load input (storm file, force model) at this time",
+                                          stateTime, stage->name(), bodies_.describe(static_cast<BodyId>(b)),
+                                          stageForce_[b].x(), stageForce_[b].y(), stageForce_[b].z()));
+      }
+      externalForce_[b] += stageForce_[b];
+      externalTorque_[b] += stageTorque_[b];
+    }
+  }
+  auto forces = bodies_.forces();
+  auto torques = bodies_.torques();
+  for (const BodyId b : bodies_.awakeBodies()) {
+    forces[b] += externalForce_[b];
+    torques[b] += externalTorque_[b];
+  }
+}
+
+double World::externalPower() const {
+  double power = 0.0;
+  if (externalForce_.empty()) {
+    return power;
+  }
+  for (const BodyId b : bodies_.awakeBodies()) {
+    power += externalForce_[b].dot(bodies_.velocity(b)) + externalTorque_[b].dot(bodies_.worldAngularVelocity(b));
+  }
+  return power;
 }
 
 const World::History* World::findPairHistory(const contact::BodyPair& key) const {
@@ -741,6 +793,18 @@ void World::updateSleep(double dt) {
     const bool resting = bodies_.velocity(b).norm() < st.linearSpeed &&
                          bodies_.worldAngularVelocity(b).norm() < st.angularSpeed;
     restTime_[b] = resting ? restTime_[b] + dt : 0.0;
+  }
+  // A sleeper whose external load has changed (a wave arrives) wakes: it was asleep under the old load.
+  if (!externalForce_.empty()) {
+    sleepLoad_.resize(n, Vec3::Zero());
+    for (BodyId b = 0; b < n; ++b) {
+      if (bodies_.motionType(b) == dynamics::MotionType::Sleeping &&
+          (externalForce_[b] - sleepLoad_[b]).norm() >
+              st.wakeLoadFraction * bodies_.info(b).mass * settings_.gravity.norm()) {
+        bodies_.wake(b);
+        restTime_[b] = 0.0;
+      }
+    }
   }
   // Contact islands over non-static bodies (union-find on the pairs in contact).
   std::vector<BodyId> parent(n);
@@ -792,19 +856,27 @@ void World::updateSleep(double dt) {
   }
   for (BodyId b : toSleep) {
     bodies_.sleep(b);
+    if (!externalForce_.empty()) {
+      sleepLoad_.resize(n, Vec3::Zero());
+      sleepLoad_[b] = externalForce_[b];
+    }
   }
 }
 
 void World::step() {
   const double dt = timeStep();
   if (!forcesReady_) {
-    computeForces(dt);
+    computeForces(dt, time_);
     forcesReady_ = true;
   }
+  // Work of the external loads over the step, trapezoidal in F . v (exact for constant loads and
+  // velocity; second order otherwise), so the energy guard sees waves as work, not instability.
+  const double powerBefore = externalPower();
   dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
   dynamics::drift(bodies_, dt);
-  computeForces(dt);
+  computeForces(dt, time_ + dt);
   dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
+  externalWork_ += 0.5 * dt * (powerBefore + externalPower());
   time_ += dt;
   ++steps_;
   stats_.awakeBodies = bodies_.awakeBodies().size();
@@ -882,6 +954,12 @@ WorldState World::captureState() const {
     o.restTime = restTime_[b];
     o.contactCount = contactCount(b);
     o.maxContactForce = maxContactForce(b);
+    o.externalForce = externalForce(b);
+    o.externalTorque = externalTorque(b);
+    o.sleepLoad = b < sleepLoad_.size() ? sleepLoad_[b] : Vec3::Zero();
+  }
+  for (const auto& stage : loadStages_) {
+    s.loadStages.emplace_back(stage->name(), stage->saveState());
   }
   for (const auto& [pair, points] : history_) {
     for (const auto& [key, h] : points) {
@@ -934,6 +1012,31 @@ void World::restoreState(const WorldState& s) {
     contactCount_[b] = o.contactCount;
     maxContactForce_[b] = o.maxContactForce;
   }
+  // Load stages: the same stages, in the same order, each given back its own state.
+  if (s.loadStages.size() != loadStages_.size()) {
+    core::failInput("checkpoint", "holds {} load stages but the scene has {}: restart with the scene the run was "
+                                  "started with", s.loadStages.size(), loadStages_.size());
+  }
+  externalForce_.clear();
+  externalTorque_.clear();
+  sleepLoad_.clear();
+  if (!loadStages_.empty()) {
+    externalForce_.resize(nBodies);
+    externalTorque_.resize(nBodies);
+    sleepLoad_.resize(nBodies);
+    for (BodyId b = 0; b < nBodies; ++b) {
+      externalForce_[b] = s.bodies[b].externalForce;
+      externalTorque_[b] = s.bodies[b].externalTorque;
+      sleepLoad_[b] = s.bodies[b].sleepLoad;
+    }
+  }
+  for (std::size_t k = 0; k < loadStages_.size(); ++k) {
+    if (s.loadStages[k].first != loadStages_[k]->name()) {
+      core::failInput("checkpoint", "load stage {} is '{}' in the checkpoint but '{}' in the scene: restart with the "
+                                    "scene the run was started with", k, s.loadStages[k].first, loadStages_[k]->name());
+    }
+    loadStages_[k]->restoreState(s.loadStages[k].second);
+  }
   std::map<contact::BodyPair, History> byPair;
   for (const ContactPointState& c : s.contacts) {
     byPair[{c.first, c.second}].emplace_back(c.key, contact::PointHistory{c.stretch, c.sliding});
@@ -948,7 +1051,7 @@ void World::restoreState(const WorldState& s) {
 }
 
 void World::evaluateContacts() {
-  computeForces(timeStep());
+  computeForces(timeStep(), time_);
   forcesReady_ = true;
 }
 

@@ -19,6 +19,7 @@
 #include "dynamics/RigidBodies.hpp"
 #include "geometry/MassProperties.hpp"
 #include "geometry/TriangleMesh.hpp"
+#include "simulation/LoadStage.hpp"
 #include "simulation/WorldState.hpp"
 
 #include <array>
@@ -57,6 +58,9 @@ struct SleepSettings {
   double linearSpeed = 1.0e-3;  ///< centroid speed below which a body is at rest (unit: m/s)
   double angularSpeed = 1.0e-3; ///< angular speed below which a body is at rest (unit: rad/s)
   double time = 0.5;            ///< a whole contact island must rest this long to sleep (unit: s)
+  /// A sleeping body wakes when its external load (LoadStage) differs from the load it fell asleep
+  /// under by more than this fraction of its weight m |g| (unit: -).
+  double wakeLoadFraction = 0.01;
 };
 
 /// The energy guard rail: without work from outside (gravity is in the energy, contacts only
@@ -241,6 +245,17 @@ public:
   /// Record work done on the bodies by loads outside the world (hydrodynamics), so the energy
   /// guard does not take it for an instability (unit: J).
   void addExternalWork(double joules) { externalWork_ += joules; }
+  /// Work done on the bodies so far by load stages and addExternalWork (unit: J).
+  [[nodiscard]] double externalWork() const { return externalWork_; }
+
+  /// Add a stage of external loads (LoadStage.hpp), run after the contacts in every force
+  /// evaluation, in the order added. The World shares ownership.
+  void addLoadStage(std::shared_ptr<LoadStage> stage);
+  [[nodiscard]] const std::vector<std::shared_ptr<LoadStage>>& loadStages() const { return loadStages_; }
+  /// Sum of the load stages' force on body b in the last force evaluation (unit: N, world).
+  [[nodiscard]] Vec3 externalForce(BodyId b) const { return b < externalForce_.size() ? externalForce_[b] : Vec3::Zero(); }
+  /// Sum of the load stages' torque about b's centre of mass, last force evaluation (unit: N m).
+  [[nodiscard]] Vec3 externalTorque(BodyId b) const { return b < externalTorque_.size() ? externalTorque_[b] : Vec3::Zero(); }
 
   /// Static or sleeping bodies were moved by hand (bodies().setPosition ...): recompute their
   /// boxes on the next step (awake bodies' boxes are recomputed every step anyway).
@@ -254,10 +269,12 @@ public:
 
 private:
   struct PairWork;
-  void computeForces(double dt);
+  void computeForces(double dt, double stateTime);
   void updateBoxes();
   void updateSleep(double dt);
   void checkEnergy();
+  void applyLoadStages(double time);
+  [[nodiscard]] double externalPower() const;
   [[nodiscard]] double bodyDn(BodyId b) const { return bodyDn_[b]; }
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
 
@@ -297,6 +314,11 @@ private:
   std::vector<ContactPatch> patches_;
   double contactEnergy_ = 0.0;  ///< J, last force evaluation
   double externalWork_ = 0.0;   ///< J, since the start
+  std::vector<std::shared_ptr<LoadStage>> loadStages_;
+  std::vector<Vec3> externalForce_;  ///< N, sum of the load stages, last force evaluation
+  std::vector<Vec3> externalTorque_; ///< N m
+  std::vector<Vec3> stageForce_, stageTorque_; ///< scratch for one stage
+  std::vector<Vec3> sleepLoad_;      ///< external force when each body fell asleep (N)
   double energyMinimum_ = 0.0;  ///< lowest E - W seen at a check (J)
   double energyPeak_ = 0.0;     ///< largest kinetic + elastic energy seen at a check (J)
   bool energyStarted_ = false;

@@ -10,6 +10,8 @@
 #include "dynamics/RigidBodies.hpp"
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace armour::simulation {
@@ -26,6 +28,9 @@ struct BodyState {
   double restTime = 0.0;                                   ///< time at rest so far (s)
   std::int32_t contactCount = 0;                           ///< engaged points, last evaluation (-)
   double maxContactForce = 0.0;                            ///< largest point force, last evaluation (N)
+  dynamics::Vec3 externalForce = dynamics::Vec3::Zero();   ///< load stages, last evaluation (N)
+  dynamics::Vec3 externalTorque = dynamics::Vec3::Zero();  ///< load stages, last evaluation (N m)
+  dynamics::Vec3 sleepLoad = dynamics::Vec3::Zero();       ///< external force when it fell asleep (N)
 };
 
 /// The friction spring of one contact point.
@@ -47,6 +52,8 @@ struct WorldState {
   bool energyStarted = false; ///< energy monitor: has a reference
   std::vector<BodyState> bodies;
   std::vector<ContactPointState> contacts; ///< sorted by (first, second, key)
+  /// Each load stage's own state (LoadStage::saveState), in the order the stages were added.
+  std::vector<std::pair<std::string, std::vector<double>>> loadStages;
 };
 
 } // namespace armour::simulation
