@@ -164,6 +164,7 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  linear_speed = {} m/s", s.sleep.linearSpeed));
   line(fmt::format("  angular_speed = {} rad/s", s.sleep.angularSpeed));
   line(fmt::format("  time = {} s", s.sleep.time));
+  line(fmt::format("  wake_load_fraction = {}", s.sleep.wakeLoadFraction));
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const Material& m : s.materials) {
@@ -225,6 +226,48 @@ std::string describeScene(const Scene& s) {
                      "material = {}",
                      m.name, m.file.string(), vec(m.position), quat(m.orientation), eulerDeg(m.orientation), m.scale,
                      materialName(m.material)));
+
+  if (!s.hydro.enabled) {
+    line("hydro: none");
+  } else {
+    const hydro::HydroSettings& h = s.hydro;
+    line(fmt::format("hydro: bodies = {}", h.bodies));
+    switch (h.model) {
+    case hydro::HydroModel::Storm: {
+      const hydro::StormLoadSettings& st = h.storm;
+      line("  model = storm");
+      line(fmt::format("  file = {}", st.file));
+      line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}", st.timeOffset,
+                       st.updateInterval, st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate"));
+      line(fmt::format("  wet_alpha = {} (-), element_size = {} Dn, pressure = {}", st.wetAlpha, st.elementSizePerDn,
+                       st.pressure));
+      line(fmt::format("  variability: enabled = {}, seed = {}, patches_per_axis = {}", st.variability.enabled,
+                       st.variability.seed, st.variability.patchesPerAxis));
+      line(fmt::format("  drag: enabled = {}, coefficient = {} (-)", st.drag.enabled, st.drag.coefficient));
+      line(fmt::format("  added_mass: enabled = {}, coefficient = {} (-)", st.addedMass.enabled,
+                       st.addedMass.coefficient));
+      break;
+    }
+    case hydro::HydroModel::Oscillating: {
+      const hydro::OscillatingForceSettings& o = h.oscillating;
+      line("  model = oscillating (seed 001 eq. 1-2)");
+      line(fmt::format("  amplitude = {} N, period = {} s, wave_number = {} 1/m, z_min = {} m, z_swl = {} m, "
+                       "z_max = {} m, waves = {}{}",
+                       o.amplitude, o.period, o.waveNumber, o.zMin, o.zSwl, o.zMax, o.waves,
+                       o.waves > 0 ? "" : " (the whole run)"));
+      break;
+    }
+    case hydro::HydroModel::ShallowWave: {
+      const hydro::ShallowWaveForceSettings& w = h.shallowWave;
+      line("  model = shallow_wave (seed 003 eq. 2)");
+      line(fmt::format("  amplitude = {} N, angular_frequency = {} rad/s, slope angle = {} deg, toe_x = {} m, "
+                       "depth_at_toe = {} m, ray_spacing = {} m{}, exposure_interval = {} s",
+                       w.amplitude, w.angularFrequency, w.slopeAngle * 180.0 / 3.14159265358979323846, w.toeX,
+                       w.depthAtToe, w.raySpacing, w.raySpacing > 0 ? "" : " (Dn / 4)", w.exposureInterval));
+      break;
+    }
+    }
+  }
 
   if (!s.warnings.empty()) {
     line(fmt::format("warnings ({}):", s.warnings.size()));

@@ -12,6 +12,8 @@
 /// Axes: x onshore (wave direction), y along the trunk, z up. SI units throughout.
 /// This is cold input data: the dynamics stage copies what it needs into contiguous arrays.
 
+#include "hydro/HydroSettings.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -221,6 +223,7 @@ struct SleepSettings {
   double linearSpeed = 1.0e-3;     ///< centroid speed below which a body may sleep (unit: m/s)
   double angularSpeed = 1.0e-3;    ///< angular speed below which a body may sleep (unit: rad/s)
   double time = 0.5;               ///< both must hold this long before it sleeps (unit: s)
+  double wakeLoadFraction = 0.01;  ///< a sleeper wakes when its external load changes by this x its weight (unit: -)
 };
 
 struct Scene {
@@ -239,6 +242,9 @@ struct Scene {
   std::vector<ShapeSpec> shapes;       ///< named shapes first, then those bodies used directly
   std::vector<Body> bodies;
   StaticGeometry statics;
+  /// Hydrodynamic loads (`hydro:`); hydro.enabled is false without the block. The storm file path
+  /// is made absolute against the scene's folder.
+  hydro::HydroSettings hydro;
   std::vector<std::string> warnings;   ///< non-fatal notes from reading (also logged)
 
   /// Index of the material called `name`, or -1.

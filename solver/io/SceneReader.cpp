@@ -571,12 +571,12 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 // run settings and the whole file
 // ---------------------------------------------------------------------------------------------
 
-const KeyList kTopKeys{"description", "seed",    "gravity", "duration", "time_step", "time_step_safety", "contact",
-                       "output",      "sleep",   "materials", "shapes", "bodies",    "static"};
+const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
+                       "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro"};
 const KeyList kContactKeys{"sample_spacing", "level_set_cells_per_dn", "max_overlap"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
                           "contacts"};
-const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time"};
+const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wake_load_fraction"};
 
 void readRunSettings(const Block& top, Scene& scene) {
   const Context& ctx = top.context();
@@ -622,6 +622,94 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.sleep.linearSpeed = s.number("linear_speed", {"m/s", kNonNegative, "0.001"}, scene.sleep.linearSpeed);
   scene.sleep.angularSpeed = s.number("angular_speed", {"rad/s", kNonNegative, "0.001"}, scene.sleep.angularSpeed);
   scene.sleep.time = s.number("time", {"s", kNonNegative, "0.5"}, scene.sleep.time);
+  scene.sleep.wakeLoadFraction = s.number("wake_load_fraction", {"-", kPositive, "0.01 of the body's weight"},
+                                          scene.sleep.wakeLoadFraction);
+}
+
+// ---------------------------------------------------------------------------------------------
+// hydro: loads on units (docs/scene-file.md, "Hydrodynamic loads")
+// ---------------------------------------------------------------------------------------------
+
+const KeyList kHydroKeys{"model", "bodies", "storm", "oscillating", "shallow_wave"};
+const KeyList kHydroModels{"storm", "oscillating", "shallow_wave"};
+const KeyList kStormLoadKeys{"file",      "time_offset",  "update_interval", "between_updates", "wet_alpha",
+                             "element_size", "pressure", "variability",     "drag",            "added_mass"};
+const KeyList kVariabilityKeys{"enabled", "seed", "patches_per_axis"};
+const KeyList kDragKeys{"enabled", "coefficient"};
+const KeyList kOscillatingKeys{"amplitude", "period", "wave_number", "z_min", "z_swl", "z_max", "waves"};
+const KeyList kShallowWaveKeys{"amplitude", "angular_frequency", "angle_deg", "tan", "cot", "toe_x", "depth_at_toe",
+                               "ray_spacing", "exposure_interval"};
+
+void readHydro(const Block& top, Scene& scene) {
+  if (!top.has("hydro")) return;
+  const Context& ctx = top.context();
+  const Block h(ctx, top.get("hydro"), "hydro", kHydroKeys);
+  hydro::HydroSettings& out = scene.hydro;
+  out.enabled = true;
+  out.model = static_cast<hydro::HydroModel>(h.choice("model", kHydroModels, 0));
+  out.bodies = h.text("bodies", "'all' or a body-name prefix such as unit_", std::string("all"));
+  const std::string_view wanted = kHydroModels[static_cast<std::size_t>(out.model)];
+  for (std::string_view other : kHydroModels) {
+    if (other != wanted)
+      h.refuse(other, fmt::format("settings of model '{}', but hydro.model is '{}'; remove the block or change the "
+                                  "model", other, wanted));
+  }
+  if (out.model == hydro::HydroModel::Storm) {
+    if (!h.has("storm")) h.failMissing("storm", "the storm block, e.g. storm: {file: storm.nc}");
+    const Block s(ctx, h.get("storm"), "hydro.storm", kStormLoadKeys);
+    hydro::StormLoadSettings& st = out.storm;
+    st.file = std::filesystem::absolute(ctx.baseDir / s.text("file", "the storm file (netCDF), relative to the scene "
+                                                                    "file's folder"))
+                  .lexically_normal()
+                  .string();
+    st.timeOffset = s.number("time_offset", {"s", kNonNegative, "0: storm time at simulation time 0"}, st.timeOffset);
+    st.updateInterval = s.number("update_interval", {"s", kPositive, "0.1 (seed 000)"}, st.updateInterval);
+    st.betweenUpdates = static_cast<hydro::BetweenUpdates>(s.choice("between_updates", {"hold", "interpolate"}, 0));
+    st.wetAlpha = s.number("wet_alpha", {"-", Range{0.0, 1.0, true, true}, "0.5"}, st.wetAlpha);
+    st.elementSizePerDn = s.number("element_size", {"Dn", Range{0.0, 1.0, true, false}, "0.05 (~4000 elements on a "
+                                                                                         "Core-Loc)"},
+                                   st.elementSizePerDn);
+    st.pressure = s.flag("pressure", st.pressure);
+    const Block v(ctx, s.has("variability") ? s.get("variability") : YAML::Node(), "hydro.storm.variability",
+                  kVariabilityKeys);
+    st.variability.enabled = v.flag("enabled", st.variability.enabled);
+    st.variability.seed = v.integer("seed", 0, "seed of the variability draws", scene.seed);
+    st.variability.patchesPerAxis = static_cast<int>(
+        v.integer("patches_per_axis", 1, "patches per body axis, each with its own deviation", 2));
+    if (st.variability.patchesPerAxis > 8) v.failValue("patches_per_axis", "must be <= 8 (512 patches per unit)");
+    const Block d(ctx, s.has("drag") ? s.get("drag") : YAML::Node(), "hydro.storm.drag", kDragKeys);
+    st.drag.enabled = d.flag("enabled", st.drag.enabled);
+    st.drag.coefficient = d.number("coefficient", {"-", kNonNegative, "1.0 (C_d)"}, st.drag.coefficient);
+    const Block a(ctx, s.has("added_mass") ? s.get("added_mass") : YAML::Node(), "hydro.storm.added_mass", kDragKeys);
+    st.addedMass.enabled = a.flag("enabled", st.addedMass.enabled);
+    st.addedMass.coefficient = a.number("coefficient", {"-", kNonNegative, "1.0 (C_a)"}, st.addedMass.coefficient);
+  } else if (out.model == hydro::HydroModel::Oscillating) {
+    if (!h.has("oscillating")) h.failMissing("oscillating", "the force model's block (seed 001 eq. 1-2)");
+    const Block o(ctx, h.get("oscillating"), "hydro.oscillating", kOscillatingKeys);
+    hydro::OscillatingForceSettings& os = out.oscillating;
+    os.amplitude = o.number("amplitude", {"N", kNonNegative, "5e4 (F0)"});
+    os.period = o.number("period", {"s", kPositive, "10"});
+    os.waveNumber = o.number("wave_number", {"1/m", kAnyNumber, "0.06 (2 pi / wave length)"}, 0.0);
+    os.zMin = o.number("z_min", {"m", kAnyNumber, "5.658 (seed 001)"});
+    os.zSwl = o.number("z_swl", {"m", kAnyNumber, "15.568 (seed 001)"});
+    os.zMax = o.number("z_max", {"m", kAnyNumber, "23.568 (seed 001)"});
+    os.waves = o.number("waves", {"-", kNonNegative, "10; 0 = the whole run"}, 0.0);
+    if (!(os.zMin < os.zSwl && os.zSwl < os.zMax))
+      o.failValue("z_swl", fmt::format("needs z_min < z_swl < z_max; got {} < {} < {} (unit: m)", os.zMin, os.zSwl,
+                                       os.zMax));
+  } else {
+    if (!h.has("shallow_wave")) h.failMissing("shallow_wave", "the force model's block (seed 003 eq. 2)");
+    const Block w(ctx, h.get("shallow_wave"), "hydro.shallow_wave", kShallowWaveKeys);
+    hydro::ShallowWaveForceSettings& sw = out.shallowWave;
+    sw.amplitude = w.number("amplitude", {"N", kNonNegative, "2e4 (F)"});
+    sw.angularFrequency = w.number("angular_frequency", {"rad/s", kPositive, "3.1416 (seed 003: 1/2 Hz)"},
+                                   sw.angularFrequency);
+    sw.slopeAngle = std::atan(readGradient(w, true));
+    sw.toeX = w.number("toe_x", {"m", kAnyNumber, "0: x of the slope's toe"});
+    sw.depthAtToe = w.number("depth_at_toe", {"m", kPositive, "12: still water depth d0 above the toe"});
+    sw.raySpacing = w.number("ray_spacing", {"m", kNonNegative, "0.25; 0 = Dn / 4 of the smallest unit"}, sw.raySpacing);
+    sw.exposureInterval = w.number("exposure_interval", {"s", kPositive, "0.5"}, sw.exposureInterval);
+  }
 }
 
 } // namespace
@@ -655,6 +743,7 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   const std::size_t namedShapes = scene.shapes.size();
   readBodies(ctx, top.get("bodies"), namedShapes, scene);
   readStatic(ctx, top.get("static"), scene);
+  readHydro(top, scene);
 
   const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });
   if (scene.statics.size() == 0 && !anyFixed && scene.gravity.norm() > 0.0)

@@ -161,6 +161,7 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;
   w.sleep.time = scene.sleep.time;
+  w.sleep.wakeLoadFraction = scene.sleep.wakeLoadFraction;
   w.recordContacts = scene.output.contacts;
   return w;
 }

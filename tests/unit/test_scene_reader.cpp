@@ -692,3 +692,110 @@ TEST(SceneErrors, EveryBrokenExampleIsRefused) {
 }
 
 } // namespace
+
+// ---------------------------------------------------------------------------------------------
+// hydro: the loads block
+// ---------------------------------------------------------------------------------------------
+
+TEST(SceneHydro, AbsentMeansNoLoads) {
+  const Scene s = parseScene(oneBody(), kScenes, "dry.yaml");
+  EXPECT_FALSE(s.hydro.enabled);
+  EXPECT_EQ(s.sleep.wakeLoadFraction, 0.01);
+  EXPECT_CONTAINS(describeScene(s), "hydro: none");
+}
+
+TEST(SceneHydro, StormBlockWithDefaults) {
+  const Scene s = parseScene(oneBody() + "seed: 9\nhydro:\n  storm: {file: storms/s.nc}\n", kScenes, "wet.yaml");
+  ASSERT_TRUE(s.hydro.enabled);
+  EXPECT_EQ(s.hydro.model, armour::hydro::HydroModel::Storm);
+  EXPECT_EQ(s.hydro.bodies, "all");
+  const auto& st = s.hydro.storm;
+  EXPECT_EQ(st.file, std::filesystem::absolute(kScenes / "storms/s.nc").lexically_normal().string());
+  EXPECT_EQ(st.timeOffset, 0.0);
+  EXPECT_EQ(st.updateInterval, 0.1);
+  EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Hold);
+  EXPECT_EQ(st.wetAlpha, 0.5);
+  EXPECT_EQ(st.elementSizePerDn, 0.05);
+  EXPECT_TRUE(st.pressure);
+  EXPECT_TRUE(st.variability.enabled);
+  EXPECT_EQ(st.variability.seed, 9u) << "the variability seed defaults to the scene seed";
+  EXPECT_EQ(st.variability.patchesPerAxis, 2);
+  EXPECT_TRUE(st.drag.enabled);
+  EXPECT_EQ(st.drag.coefficient, 1.0);
+  EXPECT_FALSE(st.addedMass.enabled);
+  const std::string text = describeScene(s);
+  EXPECT_CONTAINS(text, "model = storm");
+  EXPECT_CONTAINS(text, "update_interval = 0.1 s");
+}
+
+TEST(SceneHydro, EverySettingIsRead) {
+  const Scene s = parseScene(oneBody() + R"(hydro:
+  bodies: unit_
+  storm:
+    file: s.nc
+    time_offset: 120
+    update_interval: 0.05
+    between_updates: interpolate
+    wet_alpha: 0.4
+    element_size: 0.1
+    pressure: false
+    variability: {enabled: false, seed: 3, patches_per_axis: 3}
+    drag: {enabled: false, coefficient: 1.5}
+    added_mass: {enabled: true, coefficient: 0.8}
+)", kScenes, "wet.yaml");
+  const auto& st = s.hydro.storm;
+  EXPECT_EQ(s.hydro.bodies, "unit_");
+  EXPECT_EQ(st.timeOffset, 120.0);
+  EXPECT_EQ(st.updateInterval, 0.05);
+  EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Interpolate);
+  EXPECT_EQ(st.wetAlpha, 0.4);
+  EXPECT_EQ(st.elementSizePerDn, 0.1);
+  EXPECT_FALSE(st.pressure);
+  EXPECT_FALSE(st.variability.enabled);
+  EXPECT_EQ(st.variability.seed, 3u);
+  EXPECT_EQ(st.variability.patchesPerAxis, 3);
+  EXPECT_FALSE(st.drag.enabled);
+  EXPECT_EQ(st.drag.coefficient, 1.5);
+  EXPECT_TRUE(st.addedMass.enabled);
+  EXPECT_EQ(st.addedMass.coefficient, 0.8);
+}
+
+TEST(SceneHydro, AnalyticModels) {
+  const Scene o = parseScene(oneBody() + R"(hydro:
+  model: oscillating
+  oscillating: {amplitude: 5e4, period: 10, wave_number: 0.06, z_min: 5.658, z_swl: 15.568, z_max: 23.568, waves: 12}
+)", kScenes, "osc.yaml");
+  EXPECT_EQ(o.hydro.model, armour::hydro::HydroModel::Oscillating);
+  EXPECT_EQ(o.hydro.oscillating.amplitude, 5e4);
+  EXPECT_EQ(o.hydro.oscillating.zSwl, 15.568);
+  EXPECT_EQ(o.hydro.oscillating.waves, 12.0);
+  const Scene w = parseScene(oneBody() + R"(hydro:
+  model: shallow_wave
+  shallow_wave: {amplitude: 2e4, cot: 2, toe_x: 3, depth_at_toe: 12}
+)", kScenes, "sw.yaml");
+  EXPECT_EQ(w.hydro.model, armour::hydro::HydroModel::ShallowWave);
+  EXPECT_NEAR(w.hydro.shallowWave.slopeAngle, std::atan(0.5), kRoundOff);
+  EXPECT_NEAR(w.hydro.shallowWave.angularFrequency, std::numbers::pi, 1e-5);
+  EXPECT_EQ(w.hydro.shallowWave.toeX, 3.0);
+  EXPECT_EQ(w.hydro.shallowWave.depthAtToe, 12.0);
+}
+
+TEST(SceneHydro, ErrorsNameTheKeyAndTheFix) {
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: storm\n"), "missing key 'storm'");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {fiel: s.nc}\n"), "hydro.storm.fiel: unknown key");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, update_interval: 0}\n"),
+                  "hydro.storm.update_interval = 0: must be > 0");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, between_updates: smooth}\n"),
+                  "expected one of hold, interpolate");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: wind\n"), "expected one of storm, oscillating, shallow_wave");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc}\n  oscillating: {amplitude: 1}\n"),
+                  "hydro.oscillating: settings of model 'oscillating', but hydro.model is 'storm'");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: oscillating\n  oscillating: {amplitude: 1, period: 10, "
+                                        "z_min: 5, z_swl: 4, z_max: 9}\n"),
+                  "needs z_min < z_swl < z_max");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, variability: {patches_per_axis: 9}}\n"),
+                  "must be <= 8");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: shallow_wave\n  shallow_wave: {amplitude: 1, toe_x: 0, "
+                                        "depth_at_toe: 12}\n"),
+                  "give one of 'angle_deg' or 'tan' or 'cot'");
+}

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file HydroSettings.hpp
+/// Settings of the hydrodynamic loads on units: the `hydro:` block of a scene (docs/scene-file.md).
+/// Plain data, no dependencies: the scene reader (armour::io) fills it, the load stages
+/// (armour::hydro) use it. Axes: x onshore, y along the trunk, z up. SI units.
+
+#include <cstdint>
+#include <string>
+
+namespace armour::hydro {
+
+/// Which model gives the loads.
+enum class HydroModel {
+  Storm,        ///< pressure integration + Morison from a storm file (seed 000)
+  Oscillating,  ///< seed 001 eq. 1-2: F0 [e_x cos(wt - kx) + e_z sin(wt - kx)] phi(z)
+  ShallowWave,  ///< seed 003 eq. 2: onshore force by the shallow-water phase on a slope, exposed units only
+};
+
+/// How held loads behave between two updates.
+enum class BetweenUpdates {
+  Hold,        ///< the load of the last update until the next (seed 000)
+  Interpolate, ///< linear from the last update's load to the next one's (computed one interval ahead)
+};
+
+struct VariabilitySettings {
+  bool enabled = true;              ///< add the storm file's Weibull variability (if the file has a model)
+  std::uint64_t seed = 1;           ///< reproducible draws: same seed, same deviations (unit: -)
+  /// Each unit's surface is split into patches_per_axis^3 patches in its body frame, each with its own
+  /// deviation per half wave (unit: -); 1 = one deviation per unit (which a closed surface integrates to
+  /// no net force), 2 = octants.
+  int patchesPerAxis = 2;
+};
+
+struct DragSettings {
+  bool enabled = true;
+  double coefficient = 1.0;         ///< C_d of seed 000 eq. 2 (unit: -)
+};
+
+struct AddedMassSettings {
+  bool enabled = false;             ///< the inertia option of seed 000 eq. 1
+  double coefficient = 1.0;         ///< C_a (unit: -)
+};
+
+struct StormLoadSettings {
+  std::string file;                 ///< storm file; relative paths are relative to the scene file
+  double timeOffset = 0.0;          ///< storm time at simulation time 0 (unit: s)
+  double updateInterval = 0.1;      ///< loads recomputed every this much simulated time (unit: s); seed 000: 0.1
+  BetweenUpdates betweenUpdates = BetweenUpdates::Hold;
+  double wetAlpha = 0.5;            ///< below this water fraction an element feels atmospheric pressure (unit: -)
+  /// Target edge length of the surface elements that carry pressure, as a fraction of the unit's Dn
+  /// (unit: -); the shape's triangles are split until no edge is longer. 0.05 gives ~4000 elements
+  /// on a Core-Loc, as in seed 000.
+  double elementSizePerDn = 0.05;
+  bool pressure = true;             ///< form force and moment by pressure integration (buoyancy included)
+  VariabilitySettings variability;
+  DragSettings drag;
+  AddedMassSettings addedMass;
+};
+
+/// Seed 001 eq. 1-2 in this project's axes (seed 001 has y up): a force on each unit's centre of mass
+/// F = F0 [e_x cos(w t - k x) + e_z sin(w t - k x)] phi(z), 0 <= t <= n T, with phi rising linearly
+/// from 0 at zMin to 1 at zSwl and falling back to 0 at zMax.
+struct OscillatingForceSettings {
+  double amplitude = 0.0;           ///< F0 (unit: N)
+  double period = 10.0;             ///< T (unit: s)
+  double waveNumber = 0.0;          ///< k (unit: 1/m)
+  double zMin = 0.0;                ///< unit: m (seed 001: 5.658)
+  double zSwl = 0.0;                ///< unit: m (seed 001: 15.568)
+  double zMax = 0.0;                ///< unit: m (seed 001: 23.568)
+  double waves = 0.0;               ///< n: number of waves; 0 = for the whole run (unit: -)
+};
+
+/// Seed 003 eq. 2 in this project's axes: F = e_x F sin[w t + 2w/(sqrt(g) tan th) (sqrt(d0 - s tan th) - sqrt(d0))]
+/// with s = x - toeX the distance from the toe. A positive (onshore) force acts only on units exposed to
+/// rays cast down-slope-normal from the sea side; a negative one only on units exposed from behind.
+struct ShallowWaveForceSettings {
+  double amplitude = 0.0;           ///< F (unit: N)
+  double angularFrequency = 3.14159265358979323846; ///< w (unit: rad/s); seed 003: pi
+  double slopeAngle = 0.0;          ///< theta_0 of the slope (unit: rad)
+  double toeX = 0.0;                ///< x of the toe, where s = 0 (unit: m)
+  double depthAtToe = 0.0;          ///< d0 (unit: m)
+  double raySpacing = 0.0;          ///< exposure rays' spacing on the slope; 0 = Dn / 4 of the smallest unit (unit: m)
+  double exposureInterval = 0.5;    ///< exposure recomputed every this much simulated time (unit: s)
+};
+
+struct HydroSettings {
+  bool enabled = false;             ///< a `hydro:` block was given
+  HydroModel model = HydroModel::Storm;
+  StormLoadSettings storm;
+  OscillatingForceSettings oscillating;
+  ShallowWaveForceSettings shallowWave;
+  /// Bodies that take loads: fixed bodies never do; "all" or a name prefix such as "unit_".
+  std::string bodies = "all";
+};
+
+} // namespace armour::hydro
