@@ -268,15 +268,21 @@ public:
   void restoreState(const WorldState& state);
 
 private:
+  [[nodiscard]] double bodyDn(BodyId b) const { return bodyDn_[b]; }
+  // The stages of the step, grouped by the source file that holds them (docs/architecture.md,
+  // "World's source files"); World.cpp holds the rest and step() itself.
+  // WorldContacts.cpp: boxes -> broad phase -> narrow phase -> contact law -> accumulate.
   struct PairWork;
   void computeForces(double dt, double stateTime);
   void updateBoxes();
-  void updateSleep(double dt);
-  void checkEnergy();
+  contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
+  // WorldLoads.cpp: the external-load stages.
   void applyLoadStages(double time);
   [[nodiscard]] double externalPower() const;
-  [[nodiscard]] double bodyDn(BodyId b) const { return bodyDn_[b]; }
-  contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
+  // WorldSleep.cpp: contact islands, sleeping and waking.
+  void updateSleep(double dt);
+  // WorldEnergy.cpp: the energy guard rail.
+  void checkEnergy();
 
   WorldSettings settings_;
   dynamics::RigidBodies bodies_;
@@ -302,7 +308,7 @@ private:
   using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
   using PairHistories = std::vector<std::pair<contact::BodyPair, History>>;
   PairHistories history_; ///< sorted by pair
-  [[nodiscard]] const History* findPairHistory(const contact::BodyPair& key) const;
+  [[nodiscard]] const History* findPairHistory(const contact::BodyPair& key) const; // WorldContacts.cpp
   mutable double cachedStep_ = -1.0;
   double time_ = 0.0;
   std::uint64_t steps_ = 0;

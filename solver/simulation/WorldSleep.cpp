@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Sleeping and waking (SleepSettings): rest timers, contact islands (union-find over the pairs in
+// contact), waking by a moving neighbour or by a changed external load.
+#include "simulation/World.hpp"
+
+#include "simulation/WorldInternal.hpp"
+
+#include <vector>
+
+namespace armour::simulation {
+
+using detail::kStaticBits;
+
+void World::updateSleep(double dt) {
+  const SleepSettings& st = settings_.sleep;
+  if (!st.enabled) {
+    return;
+  }
+  const auto n = static_cast<BodyId>(bodies_.size());
+  for (BodyId b : bodies_.awakeBodies()) {
+    const bool resting = bodies_.velocity(b).norm() < st.linearSpeed &&
+                         bodies_.worldAngularVelocity(b).norm() < st.angularSpeed;
+    restTime_[b] = resting ? restTime_[b] + dt : 0.0;
+  }
+  // A sleeper whose external load has changed (a wave arrives) wakes: it was asleep under the old load.
+  if (!externalForce_.empty()) {
+    sleepLoad_.resize(n, Vec3::Zero());
+    for (BodyId b = 0; b < n; ++b) {
+      if (bodies_.motionType(b) == dynamics::MotionType::Sleeping &&
+          (externalForce_[b] - sleepLoad_[b]).norm() >
+              st.wakeLoadFraction * bodies_.info(b).mass * settings_.gravity.norm()) {
+        bodies_.wake(b);
+        restTime_[b] = 0.0;
+      }
+    }
+  }
+  // Contact islands over non-static bodies (union-find on the pairs in contact).
+  std::vector<BodyId> parent(n);
+  for (BodyId b = 0; b < n; ++b) {
+    parent[b] = b;
+  }
+  const auto find = [&](BodyId b) {
+    while (parent[b] != b) {
+      parent[b] = parent[parent[b]];
+      b = parent[b];
+    }
+    return b;
+  };
+  std::vector<BodyId> toWake;
+  for (const auto& [key, h] : history_) {
+    if ((key.second & kStaticBits) != 0 || h.empty()) {
+      continue;
+    }
+    const BodyId a = key.first, b = key.second;
+    const auto ta = bodies_.motionType(a), tb = bodies_.motionType(b);
+    if (ta == dynamics::MotionType::Static || tb == dynamics::MotionType::Static) {
+      continue;
+    }
+    parent[find(a)] = find(b);
+    // Something moving touches a sleeper: wake it (its neighbours follow as contact spreads).
+    if (ta == dynamics::MotionType::Sleeping && bodies_.isAwake(b) && restTime_[b] < st.time) {
+      toWake.push_back(a);
+    }
+    if (tb == dynamics::MotionType::Sleeping && bodies_.isAwake(a) && restTime_[a] < st.time) {
+      toWake.push_back(b);
+    }
+  }
+  for (BodyId b : toWake) {
+    bodies_.wake(b);
+    restTime_[b] = 0.0;
+  }
+  // An island sleeps when every awake member has rested long enough.
+  std::vector<char> islandRestless(n, 0);
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (restTime_[b] < st.time) {
+      islandRestless[find(b)] = 1;
+    }
+  }
+  std::vector<BodyId> toSleep;
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (!islandRestless[find(b)]) {
+      toSleep.push_back(b);
+    }
+  }
+  for (BodyId b : toSleep) {
+    bodies_.sleep(b);
+    if (!externalForce_.empty()) {
+      sleepLoad_.resize(n, Vec3::Zero());
+      sleepLoad_[b] = externalForce_[b];
+    }
+  }
+}
+
+} // namespace armour::simulation
