@@ -5,6 +5,7 @@
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
 #include "core/Log.hpp"
+#include "hydro/HydroStages.hpp"
 #include "io/SceneReader.hpp"
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/RunOutputs.hpp"
@@ -190,6 +191,10 @@ void checkScene(const std::string& path) {
     }
   }
   std::cout << simulation::describeBuild(scene, built);
+  // Hydrodynamic loads: the storm file is opened and validated, and must cover the run.
+  if (const std::string hydro = hydro::attachLoadStages(*built.world, scene.hydro, scene.duration); !hydro.empty()) {
+    std::cout << hydro << "\n";
+  }
   // The forces of the initial state: overlaps the guard rails would stop the run for are found
   // now, not after the build of a long run.
   simulation::World& world = *built.world;
@@ -255,8 +260,12 @@ void runScene(const RunOptions& o) {
   const auto buildStart = Clock::now();
   simulation::BuiltScene built = simulation::buildWorld(scene);
   logLines(log, simulation::describeBuild(scene, built));
-  log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
   simulation::World& world = *built.world;
+  // Load stages before a restart: their state is in the checkpoint.
+  if (const std::string hydro = hydro::attachLoadStages(world, scene.hydro, scene.duration); !hydro.empty()) {
+    log->info("{}", hydro);
+  }
+  log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
   if (restart) {
     try {
       world.restoreState(restart->state);

@@ -4,6 +4,7 @@
 #include "app/CommandContext.hpp"
 #include "app/RunCommands.hpp"
 #include "app/ShapeCommands.hpp"
+#include "app/StormCommands.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
 
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
       ->callback([] { std::cout << armour::core::buildInfo() << "\n"; });
   armour::app::addShapeCommands(app, global);
   armour::app::addRunCommands(app, global);
+  armour::app::addStormCommands(app, global);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {

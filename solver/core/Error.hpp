@@ -24,4 +24,11 @@ template <typename... Args>
   throw InputError(where + ": " + fmt::format(format, std::forward<Args>(args)...));
 }
 
+/// Refuse a non-finite setting: "<key>: nan N: must be a finite number".
+inline void requireFinite(double value, const std::string& key, const char* unit) {
+  if (!(value - value == 0.0)) { // false for NaN and +-inf, without <cmath>
+    failInput(key, "{} {}: must be a finite number", value, unit);
+  }
+}
+
 } // namespace armour::core

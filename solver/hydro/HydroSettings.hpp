@@ -49,9 +49,9 @@ struct StormLoadSettings {
   BetweenUpdates betweenUpdates = BetweenUpdates::Hold;
   double wetAlpha = 0.5;            ///< below this water fraction an element feels atmospheric pressure (unit: -)
   /// Target edge length of the surface elements that carry pressure, as a fraction of the unit's Dn
-  /// (unit: -); the shape's triangles are split until no edge is longer. 0.05 gives ~4000 elements
-  /// on a Core-Loc, as in seed 000.
-  double elementSizePerDn = 0.05;
+  /// (unit: -); the shape's triangles are split until no edge is longer. 0.1 gives 4640 elements
+  /// on a Core-Loc (seed 000 integrates over ~4000); 0.05 gives 18 256.
+  double elementSizePerDn = 0.1;
   bool pressure = true;             ///< form force and moment by pressure integration (buoyancy included)
   VariabilitySettings variability;
   DragSettings drag;

@@ -35,8 +35,8 @@ constexpr const char* kAxesComment =
 
 /// The variables that grow along time, in the order a record is written (time last, so that a
 /// record cut short by a kill shows the fill value as its time).
-constexpr std::array<const char*, 7> kRecordVariables = {
-    "position", "orientation", "velocity", "angular_velocity", "contact_count", "max_contact_force", "time"};
+constexpr std::array<const char*, 8> kRecordVariables = {
+    "position", "orientation", "velocity", "angular_velocity", "contact_count", "max_contact_force", "hydro_force", "time"};
 
 struct Chunking {
   std::size_t records;
@@ -155,6 +155,9 @@ void BodySeriesFile::create(const std::filesystem::path& file, const std::vector
   define("angular_velocity", NC_DOUBLE, vecDim, 3, "rad s-1", "angular velocity", angularVar_);
   define("contact_count", NC_INT, -1, 1, "1", "number of contacts acting on the body", contactCountVar_);
   define("max_contact_force", NC_DOUBLE, -1, 1, "N", "largest contact force magnitude on the body", maxForceVar_);
+  define("hydro_force", NC_DOUBLE, vecDim, 3, "N",
+         "hydrodynamic load on the body (pressure, drag, added mass; zero without hydro), last force evaluation",
+         externalForceVar_);
   check(nc_enddef(ncid_), "finish the header");
 
   std::vector<std::int32_t> ids(n);
@@ -370,6 +373,7 @@ void BodySeriesFile::append(const BodyFrame& frame) {
   check(nc_put_vara_double(ncid_, orientationVar_, start.data(), quatCount.data(), quat_.data()), "write a record");
   putVec(velocityVar_, &BodySnapshot::velocity);
   putVec(angularVar_, &BodySnapshot::angularVelocity);
+  putVec(externalForceVar_, &BodySnapshot::externalForce);
   for (std::size_t i = 0; i < n; ++i) {
     ints_[i] = frame.bodies[i].contactCount;
     scalars_[i] = frame.bodies[i].maxContactForce;

@@ -38,6 +38,7 @@ struct BodySnapshot {
   geometry::Vec3 angularVelocity = geometry::Vec3::Zero();     ///< world frame (unit: rad/s)
   std::int32_t contactCount = 0;                               ///< contacts acting on the body (unit: -)
   double maxContactForce = 0.0;                                ///< largest contact force magnitude (unit: N)
+  geometry::Vec3 externalForce = geometry::Vec3::Zero();       ///< hydrodynamic (load-stage) force, world (unit: N)
   /// For VtkFrameWriter only: the shape's surface in the body frame (centre of mass at the
   /// origin, principal or shape axes as the solver uses them). Not owned; must outlive the call
   /// that receives the frame. nullptr: the body is left out of the VTK frame.
@@ -117,6 +118,7 @@ private:
   // Variable ids.
   int timeVar_ = -1, positionVar_ = -1, orientationVar_ = -1, velocityVar_ = -1, angularVar_ = -1,
       contactCountVar_ = -1, maxForceVar_ = -1;
+  int externalForceVar_ = -1;
   // Staging buffers, reused by append() (hot: one record per series interval).
   std::vector<double> vec_, quat_;
   std::vector<std::int32_t> ints_;

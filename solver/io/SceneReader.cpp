@@ -666,7 +666,7 @@ void readHydro(const Block& top, Scene& scene) {
     st.updateInterval = s.number("update_interval", {"s", kPositive, "0.1 (seed 000)"}, st.updateInterval);
     st.betweenUpdates = static_cast<hydro::BetweenUpdates>(s.choice("between_updates", {"hold", "interpolate"}, 0));
     st.wetAlpha = s.number("wet_alpha", {"-", Range{0.0, 1.0, true, true}, "0.5"}, st.wetAlpha);
-    st.elementSizePerDn = s.number("element_size", {"Dn", Range{0.0, 1.0, true, false}, "0.05 (~4000 elements on a "
+    st.elementSizePerDn = s.number("element_size", {"Dn", Range{0.0, 1.0, true, false}, "0.1 (4640 elements on a "
                                                                                          "Core-Loc)"},
                                    st.elementSizePerDn);
     st.pressure = s.flag("pressure", st.pressure);

@@ -263,6 +263,7 @@ void VtkFrameWriter::write(const BodyFrame& frame, std::span<const ContactPoint>
   auto contactCount = intArray("contact_count", nv);
   auto maxForce = doubleArray("max_contact_force", 1, nv);
   auto displacement = doubleArray("displacement", 3, nv);
+  auto hydroForce = doubleArray("hydro_force", 3, nv);
   vtkIdType triangle = 0;
   *offset++ = 0;
   for (const auto& b : frame.bodies) {
@@ -292,6 +293,7 @@ void VtkFrameWriter::write(const BodyFrame& frame, std::span<const ContactPoint>
       contactCount->SetValue(i, b.contactCount);
       maxForce->SetValue(i, b.maxContactForce);
       put3(displacement->GetPointer(3 * i), moved);
+      put3(hydroForce->GetPointer(3 * i), b.externalForce);
     }
   }
   vtkNew<vtkCellArray> polys;
@@ -300,7 +302,7 @@ void VtkFrameWriter::write(const BodyFrame& frame, std::span<const ContactPoint>
   data->SetPoints(geometry::toVtkPoints(vertices_));
   data->SetPolys(polys);
   for (vtkDataArray* a : std::initializer_list<vtkDataArray*>{bodyId, velocity, speed, angular, contactCount, maxForce,
-                                                             displacement}) {
+                                                             displacement, hydroForce}) {
     data->GetPointData()->AddArray(a);
   }
 

@@ -27,7 +27,7 @@ using dynamics::Vec3;
 
 constexpr const char* kVersionAttribute = "armour_checkpoint_version";
 constexpr const char* kAxesComment = "world frame: x onshore, y along the trunk, z up; vec index 0, 1, 2 = x, y, z";
-/// Flag bits of contact_second and contact_key (World.cpp): documented in the file for readers.
+/// Flag bits of contact_second and contact_key (WorldInternal.hpp): documented in the file for readers.
 constexpr const char* kSecondComment =
     "body index of the second body; or 0x80000000 | plane index for a static plane, 0x40000000 | piece index for a "
     "static convex piece";
@@ -60,6 +60,30 @@ std::string fileIdentity(const fs::path& file) {
   bytes << in.rdbuf();
   const std::string content = bytes.str();
   return fmt::format("<{} bytes, fnv1a64 {:016x}>", content.size(), fnv1a(content));
+}
+
+/// A storm file by its content, cheaply: its size and a hash of its first and last MiB (storm
+/// files run to gigabytes; the header, the time axis and the last records change with any rewrite).
+std::string stormIdentity(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    core::failInput(file.string(), "cannot read the storm file to identify the scene for a checkpoint; check that it "
+                                   "exists and is readable (hydro.storm.file)");
+  }
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  constexpr std::uint64_t kPart = 1u << 20;
+  std::string bytes(static_cast<std::size_t>(std::min(size, kPart)), '\0');
+  in.seekg(0);
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::uint64_t h = fnv1a(bytes);
+  if (size > kPart) {
+    bytes.assign(static_cast<std::size_t>(std::min(size - kPart, kPart)), '\0');
+    in.seekg(static_cast<std::streamoff>(size - bytes.size()));
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    h = fnv1a(bytes, h);
+  }
+  return fmt::format("<{} bytes, fnv1a64 of the first and last MiB {:016x}>", size, h);
 }
 
 /// First line where two texts differ, for messages ("" past the end of one of them).
@@ -266,6 +290,9 @@ std::string sceneIdentity(const io::Scene& scene) {
   }
   for (io::StaticMesh& mesh : s.statics.meshes) {
     mesh.file = fileIdentity(mesh.file);
+  }
+  if (s.hydro.enabled && s.hydro.model == hydro::HydroModel::Storm) {
+    s.hydro.storm.file = stormIdentity(s.hydro.storm.file);
   }
   // describeScene with the lines that name the file, the duration and the output block left out.
   std::istringstream in(io::describeScene(s));

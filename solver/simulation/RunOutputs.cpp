@@ -94,6 +94,7 @@ io::BodyFrame RunOutputs::frame(const World& world) const {
     s.angularVelocity = bodies.worldAngularVelocity(b);
     s.contactCount = world.contactCount(b);
     s.maxContactForce = world.maxContactForce(b);
+    s.externalForce = world.externalForce(b);
     s.surface = &world.shape(world.bodyShape(b)).mesh; // body (principal) frame, like the orientation
     s.scale = world.bodyScale(b);
     f.bodies.push_back(s);

@@ -715,7 +715,7 @@ TEST(SceneHydro, StormBlockWithDefaults) {
   EXPECT_EQ(st.updateInterval, 0.1);
   EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Hold);
   EXPECT_EQ(st.wetAlpha, 0.5);
-  EXPECT_EQ(st.elementSizePerDn, 0.05);
+  EXPECT_EQ(st.elementSizePerDn, 0.1);
   EXPECT_TRUE(st.pressure);
   EXPECT_TRUE(st.variability.enabled);
   EXPECT_EQ(st.variability.seed, 9u) << "the variability seed defaults to the scene seed";
@@ -737,7 +737,7 @@ TEST(SceneHydro, EverySettingIsRead) {
     update_interval: 0.05
     between_updates: interpolate
     wet_alpha: 0.4
-    element_size: 0.1
+    element_size: 0.2
     pressure: false
     variability: {enabled: false, seed: 3, patches_per_axis: 3}
     drag: {enabled: false, coefficient: 1.5}
@@ -749,7 +749,7 @@ TEST(SceneHydro, EverySettingIsRead) {
   EXPECT_EQ(st.updateInterval, 0.05);
   EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Interpolate);
   EXPECT_EQ(st.wetAlpha, 0.4);
-  EXPECT_EQ(st.elementSizePerDn, 0.1);
+  EXPECT_EQ(st.elementSizePerDn, 0.2);
   EXPECT_FALSE(st.pressure);
   EXPECT_FALSE(st.variability.enabled);
   EXPECT_EQ(st.variability.seed, 3u);

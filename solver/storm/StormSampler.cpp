@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "storm/StormSampler.hpp"
+
+#include "core/Error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace armour::storm {
+namespace {
+
+/// The (up to four) voxel centres around a point and their bilinear weights, corners without data
+/// dropped and the rest renormalised.
+struct Stencil {
+  std::size_t voxel[4] = {0, 0, 0, 0};
+  double weight[4] = {0, 0, 0, 0};
+  int corners = 0;
+};
+
+/// Cell index and fraction along one uniform axis; false when `c` is more than half a spacing
+/// outside the outermost centres. Within that half spacing the fraction is clamped so the edge
+/// value is held.
+bool locate(const std::vector<double>& axis, double c, std::size_t& index, double& fraction) {
+  const std::size_t n = axis.size();
+  const double spacing = axis[1] - axis[0];
+  const double f = (c - axis.front()) / spacing;
+  // Written as a negated range test so a NaN coordinate is outside too.
+  if (!(f >= -0.5 && f <= static_cast<double>(n - 1) + 0.5)) {
+    return false;
+  }
+  const double cell = std::clamp(std::floor(f), 0.0, static_cast<double>(n - 2));
+  index = static_cast<std::size_t>(cell);
+  // The fraction from the stored centres (not from f) keeps a linear field exact on grids whose
+  // centres are uniform only to round-off.
+  fraction = std::clamp((c - axis[index]) / (axis[index + 1] - axis[index]), 0.0, 1.0);
+  return true;
+}
+
+bool makeStencil(const StormHeader& h, double x, double z, Stencil& s) {
+  std::size_t ix = 0, iz = 0;
+  double tx = 0.0, tz = 0.0;
+  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
+    return false;
+  }
+  const std::size_t nx = h.nx();
+  const std::size_t base = iz * nx + ix;
+  const std::size_t voxels[4] = {base, base + 1, base + nx, base + nx + 1};
+  const double weights[4] = {(1.0 - tx) * (1.0 - tz), tx * (1.0 - tz), (1.0 - tx) * tz, tx * tz};
+  double total = 0.0;
+  s.corners = 0;
+  for (int c = 0; c < 4; ++c) {
+    if (h.samples[voxels[c]] > 0 && weights[c] > 0.0) {
+      s.voxel[s.corners] = voxels[c];
+      s.weight[s.corners] = weights[c];
+      total += weights[c];
+      ++s.corners;
+    }
+  }
+  // No weight left: the point is in the hold zone of, or exactly at the centre of, voxels without
+  // data, with nothing to interpolate from.
+  if (s.corners == 0) {
+    return false;
+  }
+  for (int c = 0; c < s.corners; ++c) {
+    s.weight[c] /= total;
+  }
+  return true;
+}
+
+} // namespace
+
+StormSampler::StormSampler(const StormReader& reader) : reader_(reader) {
+  const auto& h = reader.header();
+  const auto& times = reader.times();
+  const std::size_t nx = h.nx();
+  crossings_.assign(nx, {});
+  // Zero crossings of eta per column, the crossing time by linear interpolation between the two
+  // records. A record with eta == 0 counts as trough (crest is eta > 0), so a crossing is a change
+  // of that classification between consecutive records.
+  for (std::size_t k = 0; k + 1 < times.size(); ++k) {
+    const double* e0 = reader.eta(k);
+    const double* e1 = reader.eta(k + 1);
+    const double t0 = times[k];
+    const double t1 = times[k + 1];
+    for (std::size_t i = 0; i < nx; ++i) {
+      if ((e0[i] > 0.0) != (e1[i] > 0.0)) {
+        const double s = e0[i] / (e0[i] - e1[i]);
+        crossings_[i].push_back(t0 + s * (t1 - t0));
+      }
+    }
+  }
+  setTime(times.front());
+}
+
+void StormSampler::setTime(double t) {
+  const auto& times = reader_.times();
+  if (!(t >= times.front() && t <= times.back())) {
+    core::failInput(reader_.path(), "time {} s is outside the storm's records [{}, {}] s; choose a time within the "
+                                    "file (or a longer storm file)", t, times.front(), times.back());
+  }
+  // The record at or before t, limited so that lower + 1 exists (t = last time: weight 1).
+  const auto it = std::upper_bound(times.begin(), times.end(), t);
+  const std::size_t lower = std::min(static_cast<std::size_t>(it - times.begin()) - 1, times.size() - 2);
+  const std::size_t upper = lower + 1;
+  if (heldA_ != lower || heldB_ != upper) {
+    if (heldB_ == lower || heldA_ == upper) {
+      // One interval forward (as a time-stepping solver moves) or back: keep the shared record.
+      std::swap(a_, b_);
+      std::swap(heldA_, heldB_);
+    }
+    if (heldA_ != lower) {
+      heldA_ = SIZE_MAX; // a failed read must not leave a stale record marked as held
+      reader_.read(lower, a_);
+      heldA_ = lower;
+    }
+    if (heldB_ != upper) {
+      heldB_ = SIZE_MAX;
+      reader_.read(upper, b_);
+      heldB_ = upper;
+    }
+  }
+  lower_ = lower;
+  weight_ = (t - times[lower]) / (times[upper] - times[lower]);
+  time_ = t;
+}
+
+FlowSample StormSampler::sample(double x, double z) const {
+  FlowSample out;
+  Stencil s;
+  if (!makeStencil(reader_.header(), x, z, s)) {
+    return out;
+  }
+  const double wb = weight_;
+  const double wa = 1.0 - weight_;
+  const bool hasV = reader_.header().hasVelocityY;
+  for (int c = 0; c < s.corners; ++c) {
+    const std::size_t i = s.voxel[c];
+    const double w = s.weight[c];
+    out.p += w * (wa * a_.p[i] + wb * b_.p[i]);
+    out.u += w * (wa * a_.u[i] + wb * b_.u[i]);
+    if (hasV) {
+      out.v += w * (wa * a_.v[i] + wb * b_.v[i]);
+    }
+    out.w += w * (wa * a_.w[i] + wb * b_.w[i]);
+    out.alpha += w * (wa * a_.alpha[i] + wb * b_.alpha[i]);
+  }
+  out.valid = true;
+  return out;
+}
+
+FlowSample StormSampler::rate(double x, double z) const {
+  FlowSample out;
+  Stencil s;
+  if (!makeStencil(reader_.header(), x, z, s)) {
+    return out;
+  }
+  const auto& times = reader_.times();
+  const double inv = 1.0 / (times[lower_ + 1] - times[lower_]);
+  const bool hasV = reader_.header().hasVelocityY;
+  for (int c = 0; c < s.corners; ++c) {
+    const std::size_t i = s.voxel[c];
+    const double w = s.weight[c] * inv;
+    out.p += w * (b_.p[i] - a_.p[i]);
+    out.u += w * (b_.u[i] - a_.u[i]);
+    if (hasV) {
+      out.v += w * (b_.v[i] - a_.v[i]);
+    }
+    out.w += w * (b_.w[i] - a_.w[i]);
+    out.alpha += w * (b_.alpha[i] - a_.alpha[i]);
+  }
+  out.valid = true;
+  return out;
+}
+
+WavePhase StormSampler::phase(double x) const {
+  WavePhase out;
+  const auto& h = reader_.header();
+  const double f = (x - h.x.front()) / h.dx();
+  if (std::isnan(f)) {
+    return out; // no column to speak of: still water, first half wave
+  }
+  const auto ix = static_cast<std::size_t>(std::clamp(std::round(f), 0.0, static_cast<double>(h.nx() - 1)));
+  const double e0 = reader_.eta(lower_)[ix];
+  const double e1 = reader_.eta(lower_ + 1)[ix];
+  out.elevation = (1.0 - weight_) * e0 + weight_ * e1;
+  out.crest = out.elevation > 0.0;
+  const auto& c = crossings_[ix];
+  out.halfWave = static_cast<std::int64_t>(std::upper_bound(c.begin(), c.end(), time_) - c.begin());
+  return out;
+}
+
+} // namespace armour::storm

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file StormSampler.hpp
+/// Values of a storm file at any (x, z, t): exact linear interpolation in t between the two
+/// records that bracket t, and bilinear in (x, z) between the four voxel centres around the point
+/// (seed 000 section 2.3: "an exact linear interpolation in time and space from the netCDF file
+/// cells to the surface element meshes"). A field linear in x, z and t is reproduced exactly.
+///
+/// Edges and gaps (docs/storm-file.md, "Sampling"):
+///  - within half a voxel outside the outermost centres, the value of the edge is held;
+///  - farther out the point is outside the grid: valid = false;
+///  - corners in voxels without data (samples = 0) are dropped and the remaining weights
+///    renormalised; with no corner left, valid = false.
+///
+/// Wave phase for the variability model: at each x column the zero crossings of eta(t) split the
+/// record into half waves, numbered from 0; a half wave with eta > 0 is a crest, else a trough.
+/// The column nearest to x is used.
+///
+/// Memory: two records at a time; moving forward in time reads at most one record per call.
+/// Not thread-safe to setTime(); sample() and phase() are const and safe to call from many
+/// threads between setTime() calls.
+
+#include "storm/StormFile.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace armour::storm {
+
+/// The flow at one point and time. Velocities in m/s, pressure in Pa (gauge), alpha in [0, 1].
+struct FlowSample {
+  double p = 0.0;
+  double u = 0.0;
+  double v = 0.0;
+  double w = 0.0;
+  double alpha = 0.0;
+  bool valid = false; ///< false: outside the grid or no data around the point (values are 0)
+};
+
+/// Where a point is in the wave cycle at its x.
+struct WavePhase {
+  bool crest = false;           ///< eta > 0 (above the still water level) in this half wave
+  std::int64_t halfWave = 0;    ///< index of the half wave at this x since the first record (unit: -)
+  double elevation = 0.0;       ///< eta(x, t): free surface above the still water level (unit: m)
+};
+
+class StormSampler {
+public:
+  /// The reader must outlive the sampler.
+  explicit StormSampler(const StormReader& reader);
+
+  /// Make t current: reads the records that bracket t if they are not held. Throws
+  /// core::InputError if t is outside [first, last] record time (naming the file and the range).
+  void setTime(double t);
+  [[nodiscard]] double time() const { return time_; }
+
+  /// Flow at (x, z) at the current time.
+  [[nodiscard]] FlowSample sample(double x, double z) const;
+  /// Time derivative of the velocity at (x, z): the slope between the two bracketing records
+  /// (unit: m/s^2; the local derivative du/dt, not the material derivative).
+  [[nodiscard]] FlowSample rate(double x, double z) const;
+  /// Free-surface elevation and wave phase at x, current time. Outside the x range: the edge column.
+  [[nodiscard]] WavePhase phase(double x) const;
+
+  [[nodiscard]] const StormReader& reader() const { return reader_; }
+
+private:
+  const StormReader& reader_;
+  double time_ = 0.0;
+  std::size_t lower_ = 0;      ///< index of the record at or before time_
+  double weight_ = 0.0;        ///< weight of record lower_ + 1 (unit: -)
+  StormRecord a_, b_;          ///< records lower_ and lower_ + 1
+  std::size_t heldA_ = SIZE_MAX, heldB_ = SIZE_MAX;
+  /// Per x column, the times of the zero crossings of eta (increasing).
+  std::vector<std::vector<double>> crossings_;
+};
+
+} // namespace armour::storm
