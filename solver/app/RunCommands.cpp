@@ -318,6 +318,11 @@ void runScene(const RunOptions& o) {
   bool stopped = false;
   StopSignals signals;
   try {
+    // A new run's first record shows the forces of the initial state (contacts, hydrodynamic
+    // loads); the first step would compute the same ones, so this changes nothing else.
+    if (!restart) {
+      world.evaluateContacts();
+    }
     // Same end test as World::advanceTo: the last step lands within half a step of the end.
     outputs.update(world);
     while (world.time() < end - 0.5 * dt) {

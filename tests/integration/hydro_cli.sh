@@ -21,12 +21,12 @@ synth() {
   "$armour" --log-level warn storm-file synth airy --out "$1" --x-min 0 --x-max 24 --z-min 0 --z-max 10 \
     --voxel 0.25 --swl 6 --depth 4 --height 1.5 --period 6 --duration "$2"
 }
-synth "$out/storm.nc" 12
+synth "$out/storm.nc" 18
 run() { "$armour" --log-level warn run "$out/scene.yaml" --threads 1 "$@"; }
 
-# check: the storm file is read and covers storm times 2 .. 6 s.
+# check: the storm file is read and covers storm times 12 .. 16 s.
 checked=$("$armour" --log-level warn check "$out/scene.yaml")
-grep -q "hydro: storm .*storm.nc (241 records" <<< "$checked" || fail "check does not report the storm file: $checked"
+grep -q "hydro: storm .*storm.nc (361 records" <<< "$checked" || fail "check does not report the storm file: $checked"
 grep -q "4 loaded bodies" <<< "$checked" || fail "check should count 4 loaded units: $checked"
 
 # The run, and the hydrodynamic forces it recorded.
@@ -59,13 +59,13 @@ run -o "$out/halves" --restart
 cmp "$out/full/final_state.csv" "$out/halves/final_state.csv" || fail "the restarted storm replay differs from the uninterrupted one"
 
 # Refusals.
-synth "$out/short.nc" 4
+synth "$out/short.nc" 14
 sed 's/file: storm.nc/file: short.nc/' "$out/scene.yaml" > "$out/short.yaml"
 set +e
 msg=$("$armour" --log-level warn check "$out/short.yaml" 2>&1); status=$?
 set -e
 [[ $status -eq 2 ]] || fail "a storm file too short should exit 2, got $status: $msg"
-grep -q "short.nc: holds storm times 0 .. 4 s, but the run needs 2 .. 6 s" <<< "$msg" || fail "unclear message: $msg"
+grep -q "short.nc: holds storm times 0 .. 14 s, but the run needs 12 .. 16 s" <<< "$msg" || fail "unclear message: $msg"
 sed 's/file: storm.nc/file: missing.nc/' "$out/scene.yaml" > "$out/missing.yaml"
 set +e
 msg=$("$armour" --log-level warn check "$out/missing.yaml" 2>&1); status=$?
@@ -73,7 +73,7 @@ set -e
 [[ $status -eq 2 ]] || fail "a missing storm file should exit 2, got $status: $msg"
 grep -q "missing.nc" <<< "$msg" || fail "the message should name the missing file: $msg"
 # Another storm in the same place: a restart must not mix two storms.
-synth "$out/storm.nc" 13
+synth "$out/storm.nc" 19
 set +e
 msg=$(run -o "$out/halves" --restart --duration 5 2>&1); status=$?
 set -e
