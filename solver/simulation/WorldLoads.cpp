@@ -43,11 +43,15 @@ void World::applyLoadStages(double stateTime) {
       externalTorque_[b] += stageTorque_[b];
     }
   }
+  // Sleeping bodies get their load too (the integrator skips them): one that wakes after this
+  // evaluation starts its next step with the load in its first half kick.
   auto forces = bodies_.forces();
   auto torques = bodies_.torques();
-  for (const BodyId b : bodies_.awakeBodies()) {
-    forces[b] += externalForce_[b];
-    torques[b] += externalTorque_[b];
+  for (BodyId b = 0; b < n; ++b) {
+    if (bodies_.motionType(b) != dynamics::MotionType::Static) {
+      forces[b] += externalForce_[b];
+      torques[b] += externalTorque_[b];
+    }
   }
 }
 
