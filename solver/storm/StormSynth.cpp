@@ -237,8 +237,9 @@ void StormSynth::validate() {
   }
   if (s.model != SynthModel::Current && (s.currentU != 0.0 || s.currentW != 0.0)) {
     core::failInput("--current-u",
-                    "a current ({}, {} m/s) applies to the current model only (waves on a current "
-                    "need the Doppler-shifted dispersion relation, not implemented)",
+                    "a current ({}, {} m/s) applies to the current model only: waves on a current "
+                    "would need the Doppler-shifted dispersion relation, which synth does not model; "
+                    "drop --current-u and --current-w for a wave, or use the current model alone",
                     s.currentU, s.currentW);
   }
   if (!std::isfinite(s.rampTime)) {
