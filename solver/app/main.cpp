@@ -2,6 +2,7 @@
 /// The `armour` program: one entry point, one subcommand per job.
 
 #include "app/CommandContext.hpp"
+#include "app/PlaceCommands.hpp"
 #include "app/RunCommands.hpp"
 #include "app/ShapeCommands.hpp"
 #include "app/StormCommands.hpp"
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   armour::app::addShapeCommands(app, global);
   armour::app::addRunCommands(app, global);
   armour::app::addStormCommands(app, global);
+  armour::app::addPlaceCommands(app, global);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {

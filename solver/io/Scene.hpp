@@ -13,6 +13,7 @@
 /// This is cold input data: the dynamics stage copies what it needs into contiguous arrays.
 
 #include "hydro/HydroSettings.hpp"
+#include "placement/PlacementSettings.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -245,6 +246,8 @@ struct Scene {
   /// Hydrodynamic loads (`hydro:`); hydro.enabled is false without the block. The storm file path
   /// is made absolute against the scene's folder.
   hydro::HydroSettings hydro;
+  /// Units to add with `armour place` (`placement:`); placement.enabled is false without the block.
+  placement::PlacementSettings placement;
   std::vector<std::string> warnings;   ///< non-fatal notes from reading (also logged)
 
   /// Index of the material called `name`, or -1.

@@ -128,8 +128,10 @@ std::string shapeItem(const io::ShapeSpec& spec) {
   return fmt::format("shape '{}' (generator {})", spec.name, spec.generator);
 }
 
-/// The closed surface of a shape in its natural frame: a generator at V = 1 m^3, or a mesh file
-/// at its own size, validated (orientation repaired where unambiguous).
+} // namespace
+
+// The closed surface of a shape in its natural frame: a generator at V = 1 m^3, or a mesh file
+// at its own size, validated (orientation repaired where unambiguous).
 geometry::TriangleMesh shapeMesh(const io::ShapeSpec& spec) {
   if (spec.source == io::ShapeSource::Generator) {
     geometry::ShapeRequest request;
@@ -146,8 +148,6 @@ geometry::TriangleMesh shapeMesh(const io::ShapeSpec& spec) {
   }
   return mesh;
 }
-
-} // namespace
 
 WorldSettings worldSettings(const io::Scene& scene) {
   WorldSettings w;
@@ -334,6 +334,8 @@ BuiltScene buildWorld(const io::Scene& scene) {
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
     const io::ShapeSpec& spec = scene.shapes[i];
     if (!used[i]) {
+      // The units of a placement use it once `armour place` adds them.
+      if (scene.placement.enabled && spec.name == scene.placement.shape) continue;
       warn(built, fmt::format("{}: {} is used by no body; not built", scene.sourceName, shapeItem(spec)));
       continue;
     }

@@ -80,6 +80,10 @@ struct BuiltScene {
   }
 };
 
+/// The closed surface of a scene shape in its natural frame: a generator at V = 1 m^3, or a mesh
+/// file at its own size, validated (orientation repaired where unambiguous, with a warning).
+geometry::TriangleMesh shapeMesh(const io::ShapeSpec& spec);
+
 /// The World settings a scene asks for (gravity, time step, contact resolution, guard rail, sleep).
 WorldSettings worldSettings(const io::Scene& scene);
 

@@ -257,6 +257,10 @@ public:
   /// Sum of the load stages' torque about b's centre of mass, last force evaluation (unit: N m).
   [[nodiscard]] Vec3 externalTorque(BodyId b) const { return b < externalTorque_.size() ? externalTorque_[b] : Vec3::Zero(); }
 
+  /// Wake every sleeping body and restart its rest clock (as a run started from these positions
+  /// would): a pack that only slept while creeping shows it by moving again.
+  void wakeAll();
+
   /// Static or sleeping bodies were moved by hand (bodies().setPosition ...): recompute their
   /// boxes on the next step (awake bodies' boxes are recomputed every step anyway).
   void invalidateBoxes() { boxesValid_ = false; }

@@ -11,6 +11,13 @@ namespace armour::simulation {
 
 using detail::kStaticBits;
 
+void World::wakeAll() {
+  for (BodyId b = 0; b < bodies_.size(); ++b) {
+    if (bodies_.motionType(b) == dynamics::MotionType::Sleeping) bodies_.wake(b);
+    if (b < restTime_.size()) restTime_[b] = 0.0;
+  }
+}
+
 void World::updateSleep(double dt) {
   const SleepSettings& st = settings_.sleep;
   if (!st.enabled) {

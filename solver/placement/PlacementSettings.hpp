@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file PlacementSettings.hpp
+/// Settings of `armour place`: the `placement:` block of a scene file (docs/placement.md). The
+/// scene gives the underlayer (a slope with its toe, roughness and walls), the materials and the
+/// shapes; the block says which units to add, where (a grid in the slope plane or a grid file),
+/// in which orientations, how (crane: one at a time; grid: all lowered, then released together)
+/// and, optionally, a rock underlayer to deposit first and freeze (seed 000).
+///
+/// Plain data, no dependencies: the scene reader (armour::io) fills it, the placement stage
+/// (armour::placement) uses it. Axes: x onshore, y along the trunk, z up. SI units; lengths
+/// given "in Dn" are multiples of the unit's nominal diameter.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace armour::placement {
+
+/// How the units reach the pack.
+enum class Method {
+  Crane, ///< one at a time: lowered to first contact, released, next when the pack is at rest (seeds 001, 003)
+  Grid,  ///< every unit lowered onto those below it, then all released together (seed 000's POSITIT)
+};
+
+/// How each unit is turned before it is lowered.
+enum class OrientationMode {
+  Perturbed, ///< the base orientation, then a rotation about the vertical by U(-max, max) (seed 000: +-20 deg)
+  Tilted,    ///< the base orientation, then a rotation by U(0, max) about a random horizontal axis and U(-max, max) about z
+  Random,    ///< uniformly random in SO(3)
+};
+
+/// Where the grid points are. Points are in the slope frame: s up the slope face from the slope's
+/// origin (the foot of the face), y along the trunk; each is lowered vertically from above.
+struct GridSettings {
+  std::string file;                 ///< CSV of points "x,y" or "x,y,z" (m, world); empty = generated grid
+  int rows = 0;                     ///< rows up the slope (unit: -)
+  std::vector<int> unitsPerRow;     ///< units per row, repeated cyclically, e.g. {12, 11} (unit: -)
+  double dx = 0.0;                  ///< spacing along the trunk (unit: Dn); 0 = width / unitsPerRow[0]
+  double dy = 0.0;                  ///< row spacing up the slope, in the slope plane (unit: Dn); 0 = from packingDensity
+  double packingDensity = 0.0;      ///< target phi = N Dn^2 / A = 1 / (dx dy) in Dn (unit: -); used when dy = 0
+  double firstRow = 0.5;            ///< up-slope distance of row 0 from the slope origin (unit: Dn)
+  double yStart = 0.0;              ///< trunk coordinate where the rows start (unit: m)
+  double width = 0.0;               ///< trunk length covered by the rows (unit: m); 0 = from the walls
+  double stagger = 0.5;             ///< row r is shifted along y by frac(r stagger) dx (unit: -); 0.5 alternates
+  double jitter = 0.0;              ///< random shift of each point, U(-j, j) on both axes (unit: Dn)
+  int layers = 1;                   ///< layers of the grid, each lowered onto the ones below (unit: -)
+  double layerShiftS = 0.0;         ///< shift of each further layer up the slope (unit: Dn)
+  double layerShiftY = 0.0;         ///< shift of each further layer along the trunk (unit: Dn)
+};
+
+struct OrientationSettings {
+  OrientationMode mode = OrientationMode::Perturbed;
+  double phiDeg = 0.0, thetaDeg = 0.0, psiDeg = 0.0; ///< base orientation, Tait-Bryan x-y'-z'' (unit: deg)
+  double maxAngleDeg = 20.0;        ///< perturbation bound (unit: deg); seed 000: +-20 deg about the vertical
+  int tries = 1;                    ///< orientations tried per unit, the one that comes to rest lowest kept (unit: -)
+};
+
+struct CraneSettings {
+  double speed = 0.5;               ///< lowering speed, the velocity at release (unit: m/s); seed 001: 0.5
+  /// The pack is at rest when its kinetic energy is below 1/2 M v_rest^2 (M the mass of the units
+  /// placed so far): a root-mean-square speed (unit: m/s).
+  double restSpeed = 0.01;
+  double minTime = 0.2;             ///< simulated time after a release before the next unit (unit: s)
+  double maxTime = 5.0;             ///< cap per unit: the next one goes anyway (and is counted) (unit: s)
+};
+
+/// A rock underlayer deposited before the units and then frozen (seed 000: 3436 rocks).
+struct RockSettings {
+  bool enabled = false;
+  int count = 0;                    ///< rocks (unit: -)
+  double dn50 = 0.0;                ///< median nominal diameter (unit: m)
+  /// Grading: Dn85 / Dn15 (unit: -); nominal diameters are log-uniform between dn50 / sqrt(g) and dn50 sqrt(g).
+  double grading = 1.25;
+  int shapes = 12;                  ///< distinct rock shapes in the library, drawn at random (unit: -)
+  std::string material;             ///< material name; empty = the units' material
+  double sEnd = 0.0;                ///< rocks cover the face up to this up-slope distance (unit: m); 0 = up to the rows
+  double toeLength = 0.0;           ///< and this far offshore of the slope origin along the toe (unit: m)
+  double clearance = 0.002;         ///< gap left when a rock is lowered (unit: Dn50)
+  int tries = 4;                    ///< orientations tried per rock, the lowest kept (unit: -)
+};
+
+/// The final settling: until every unit sleeps (the scene's sleep settings: at rest for the sleep
+/// time), or, with sleeping disabled, until the rms speed is below restSpeed.
+struct SettleSettings {
+  double restSpeed = 0.005;         ///< rms speed of a settled pack when sleeping is disabled (unit: m/s)
+  double minTime = 0.5;             ///< at least this long after the last release (unit: s)
+  double maxTime = 30.0;            ///< at most (unit: s); units still moving are reported
+};
+
+struct PlacementSettings {
+  bool enabled = false;             ///< the scene has a `placement:` block
+  std::string shape;                ///< shape name (from `shapes:` or a generator name)
+  std::string material;             ///< material name
+  double volume = 0.0;              ///< unit volume (unit: m^3)
+  std::string namePrefix = "unit";  ///< units are called <prefix>_<i>, i from 0 in placement order
+  std::string slope;                ///< the static slope the grid lies on; empty = the only slope
+  Method method = Method::Crane;
+  GridSettings grid;
+  OrientationSettings orientation;
+  CraneSettings crane;
+  RockSettings rocks;
+  SettleSettings settle;
+  double clearance = 0.002;         ///< gap left between a lowered unit and what it lands on (unit: Dn)
+  std::uint64_t seed = 1;           ///< orientations, jitter and rocks (unit: -)
+  std::string output = "placed.yaml"; ///< the placed scene, in the output folder
+};
+
+} // namespace armour::placement

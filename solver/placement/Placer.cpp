@@ -1,0 +1,473 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "placement/Placer.hpp"
+
+#include "contact/SurfaceSamples.hpp"
+#include "core/Error.hpp"
+#include "core/Log.hpp"
+#include "placement/Deposit.hpp"
+#include "placement/PlacementGrid.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace armour::placement {
+namespace {
+
+using simulation::BodyId;
+using simulation::BodySpec;
+using simulation::ShapeId;
+using simulation::World;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// A generator of independent random streams: stream k of seed s (SplitMix64 of both), so a
+/// unit's draws do not depend on how many draws the others took.
+std::mt19937_64 stream(std::uint64_t seed, std::uint64_t k) {
+  std::uint64_t z = seed * 0x9e3779b97f4a7c15ULL + (k + 1) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return std::mt19937_64(z ^ (z >> 31));
+}
+
+double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// The orientation of unit i (natural shape frame -> world), from its own stream.
+Quat unitOrientation(const OrientationSettings& o, std::mt19937_64& rng) {
+  if (o.mode == OrientationMode::Random) return uniformRotation(rng);
+  const Quat base = io::quaternionFromTaitBryan(o.phiDeg * kDeg, o.thetaDeg * kDeg, o.psiDeg * kDeg);
+  const double max = o.maxAngleDeg * kDeg;
+  const Quat aboutZ(Eigen::AngleAxisd(max * (2.0 * uniform(rng) - 1.0), Vec3::UnitZ()));
+  if (o.mode == OrientationMode::Perturbed) return (aboutZ * base).normalized();
+  const double azimuth = 2.0 * std::numbers::pi * uniform(rng);
+  const Quat tilt(Eigen::AngleAxisd(max * uniform(rng), Vec3(std::cos(azimuth), std::sin(azimuth), 0.0)));
+  return (tilt * aboutZ * base).normalized();
+}
+
+/// Index of the scene shape a placement names: a named shape, or a generator used directly
+/// (added to the scene's shapes as the reader would).
+std::size_t resolveShape(io::Scene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i)
+    if (scene.shapes[i].name == name) return i;
+  io::ShapeSpec spec;
+  spec.name = name;
+  spec.generator = name;
+  spec.seed = scene.seed;
+  scene.shapes.push_back(spec);
+  return scene.shapes.size() - 1;
+}
+
+std::size_t resolveMaterial(const io::Scene& scene, const std::string& name, const std::string& key) {
+  const std::ptrdiff_t m = scene.findMaterial(name);
+  if (m < 0) {
+    std::string names;
+    for (const auto& mat : scene.materials) names += (names.empty() ? "" : ", ") + mat.name;
+    core::failInput(scene.sourceName, "{} = {}: no such material; the scene has {}", key, name, names);
+  }
+  return static_cast<std::size_t>(m);
+}
+
+/// The slope the grid lies on.
+const io::StaticSlope* findSlope(const io::Scene& scene) {
+  const std::string& wanted = scene.placement.slope;
+  for (const io::StaticSlope& s : scene.statics.slopes)
+    if (wanted.empty() || s.name == wanted) return &s;
+  if (!wanted.empty())
+    core::failInput(scene.sourceName, "placement.slope = {}: the scene has no slope of that name", wanted);
+  return nullptr;
+}
+
+/// The y extent between the trunk walls, if both exist.
+std::pair<double, double> trunkWalls(const io::Scene& scene) {
+  double lo = std::nan(""), hi = std::nan("");
+  for (const io::StaticWall& w : scene.statics.walls) {
+    if (w.axis != 1) continue;
+    (w.atMinimum ? lo : hi) = w.position;
+  }
+  return {lo, hi};
+}
+
+/// Total kinetic energy and mass of the awake bodies (sleeping ones are at rest by definition).
+std::pair<double, double> motion(const World& world, std::size_t firstBody) {
+  const auto& bodies = world.bodies();
+  double ke = 0.0, mass = 0.0;
+  for (BodyId b = firstBody; b < bodies.size(); ++b) {
+    if (bodies.motionType(b) == dynamics::MotionType::Static) continue;
+    mass += bodies.info(b).mass;
+    if (bodies.isAwake(b)) ke += bodies.kineticEnergy(b);
+  }
+  return {ke, mass};
+}
+
+/// True when every movable body from firstBody on sleeps.
+bool allAsleep(const World& world, std::size_t firstBody) {
+  const auto& bodies = world.bodies();
+  for (BodyId b = firstBody; b < bodies.size(); ++b)
+    if (bodies.isAwake(b)) return false;
+  return true;
+}
+
+/// Step until the bodies from firstBody on have an rms speed below restSpeed (after minTime),
+/// or, with `untilAsleep` and sleeping enabled, until they all sleep (at rest for the sleep time);
+/// at most maxTime. Returns the time taken and whether it came to rest.
+std::pair<double, bool> settle(World& world, std::size_t firstBody, double restSpeed, double minTime, double maxTime,
+                               bool untilAsleep = false) {
+  untilAsleep = untilAsleep && world.settings().sleep.enabled;
+  const double start = world.time();
+  const double dt = world.timeStep();
+  const int checkEvery = std::max(1, static_cast<int>(std::lround(0.01 / dt))); // every 10 ms
+  for (int k = 1;; ++k) {
+    world.step();
+    const double t = world.time() - start;
+    if (k % checkEvery != 0 && t < maxTime) continue;
+    const auto [ke, mass] = motion(world, firstBody);
+    if (t >= minTime && (untilAsleep ? allAsleep(world, firstBody) : ke <= 0.5 * mass * restSpeed * restSpeed))
+      return {t, true};
+    if (t >= maxTime) return {t, false};
+  }
+}
+
+/// Slope frame of the rock deposit: x up the face, z out of it (a rotation about y by -alpha).
+Quat slopeFrame(double tanAlpha) { return Quat(Eigen::AngleAxisd(-std::atan(tanAlpha), Vec3::UnitY())); }
+
+/// A Deposit over the statics of `built`, in the frame `toFrame` (world -> deposit frame).
+Deposit makeDeposit(const simulation::BuiltScene& built, const Quat& toFrame, double cell) {
+  const auto& d = built.domain;
+  // The plan bounds of the domain in the deposit frame (its corners, rotated).
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 c((i & 1) ? d.xMax : d.xMin, (i & 2) ? d.yMax : d.yMin, (i & 4) ? d.depth : -d.depth);
+    lo = lo.cwiseMin(toFrame * c);
+    hi = hi.cwiseMax(toFrame * c);
+  }
+  Deposit deposit(lo.x(), hi.x(), lo.y(), hi.y(), cell);
+  for (const auto& p : built.planes) deposit.addPlane({toFrame * p.point, toFrame * p.normal});
+  for (const auto& piece : built.convexPieces) {
+    std::vector<Vec3> corners;
+    for (const Vec3& c : piece.corners) corners.push_back(toFrame * c);
+    deposit.addPiece(corners);
+  }
+  return deposit;
+}
+
+void addWorldBody(Deposit& deposit, const World& world, BodyId b, const Quat& toFrame) {
+  deposit.addBody(world.shape(world.bodyShape(b)), world.bodyScale(b), toFrame * world.bodies().orientation(b),
+                  toFrame * world.bodies().position(b));
+}
+
+io::Body sceneBody(const World& world, BodyId b, const std::string& name, std::size_t shape, std::size_t material,
+                   double volume, bool fixed) {
+  io::Body out;
+  out.name = name;
+  out.shape = shape;
+  out.material = material;
+  out.volume = volume;
+  out.position = world.bodies().position(b);
+  out.orientation = world.naturalOrientation(b).normalized();
+  out.fixed = fixed;
+  return out;
+}
+
+} // namespace
+
+PlacementResult place(const io::Scene& input, const ProgressFn& progress, const PlaceOptions& options) {
+  auto log = core::logger("place");
+  const auto wallStart = std::chrono::steady_clock::now();
+  const PlacementSettings& ps = input.placement;
+  if (!ps.enabled) core::failInput(input.sourceName, "no placement block: `armour place` needs one (docs/placement.md)");
+  PlacementResult result;
+  io::Scene& scene = result.scene;
+  scene = input;
+  scene.placement = PlacementSettings{};
+
+  const std::size_t unitShape = resolveShape(scene, ps.shape);
+  const std::size_t unitMaterial = resolveMaterial(scene, ps.material, "placement.material");
+  const double dn = std::cbrt(ps.volume);
+  const io::StaticSlope* slope = findSlope(scene);
+  const auto [wallLo, wallHi] = trunkWalls(scene);
+
+  // Grid points first: bad grids fail before anything is built.
+  std::vector<GridPoint> grid;
+  GridSlope gridSlope;
+  if (slope != nullptr) gridSlope = {slope->origin.x(), slope->origin.y(), slope->tanAlpha};
+  double wallWidth = std::isfinite(wallLo) && std::isfinite(wallHi) ? wallHi - wallLo : 0.0;
+  GridSettings gridSettings = ps.grid;
+  if (gridSettings.file.empty()) {
+    if (slope == nullptr)
+      core::failInput(scene.sourceName, "placement.grid: a generated grid lies on a slope, and the scene has none; add "
+                                        "a static slope or give placement.grid.file");
+    if (gridSettings.width <= 0.0 && std::isfinite(wallLo)) gridSettings.yStart = std::max(gridSettings.yStart, wallLo);
+    if (gridSettings.yStart == 0.0 && std::isfinite(wallLo)) gridSettings.yStart = wallLo;
+    grid = generateGrid(gridSettings, gridSlope, dn, wallWidth, ps.seed, scene.sourceName);
+    result.summary.gridPackingDensity = gridSpacing(gridSettings, dn, wallWidth, scene.sourceName).packingDensity;
+  } else {
+    grid = readGridFile(gridSettings.file);
+  }
+
+  // The World of the scene as given (statics and any bodies already there).
+  result.built = simulation::buildWorld(scene);
+  World& world = *result.built.world;
+  const std::size_t givenBodies = scene.bodies.size();
+  result.firstAddedBody = givenBodies;
+
+  // Shapes: the unit's, and the rock library.
+  const auto worldShape = [&](std::size_t sceneShape) -> ShapeId {
+    if (result.built.shapeOfSceneShape.size() <= sceneShape) result.built.shapeOfSceneShape.resize(sceneShape + 1);
+    auto& id = result.built.shapeOfSceneShape[sceneShape];
+    if (!id) id = world.addShape(scene.shapes[sceneShape].name, simulation::shapeMesh(scene.shapes[sceneShape]));
+    return *id;
+  };
+  const ShapeId unitShapeId = worldShape(unitShape);
+  const simulation::ShapeModel& unitModel = world.shape(unitShapeId);
+  const double unitScale = std::cbrt(ps.volume / unitModel.unitMass.volume);
+  const double clearance = ps.clearance * dn;
+
+  // 1. The rock underlayer.
+  const RockSettings& rs = ps.rocks;
+  std::vector<BodyId> rockBodies;
+  if (rs.enabled) {
+    if (slope == nullptr) core::failInput(scene.sourceName, "placement.rocks: the rocks are dropped on a slope; add one");
+    const std::size_t rockMaterial = resolveMaterial(scene, rs.material.empty() ? ps.material : rs.material,
+                                                     "placement.rocks.material");
+    std::vector<std::pair<std::size_t, ShapeId>> rockShapes;
+    for (int k = 0; k < rs.shapes; ++k) {
+      io::ShapeSpec spec;
+      spec.name = fmt::format("rock_{:02d}", k);
+      spec.generator = "rock";
+      spec.seed = ps.seed * 1000 + static_cast<std::uint64_t>(k);
+      scene.shapes.push_back(spec);
+      result.addedShapes.push_back(spec);
+      rockShapes.emplace_back(scene.shapes.size() - 1, worldShape(scene.shapes.size() - 1));
+    }
+    const Quat frame = slopeFrame(slope->tanAlpha), toFrame = frame.conjugate();
+    double rockRadius = 0.0;
+    for (const auto& [s, id] : rockShapes) rockRadius = std::max(rockRadius, world.shape(id).radius);
+    const double maxScale = rs.dn50 * std::pow(rs.grading, 0.25);
+    Deposit deposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
+    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(deposit, world, b, toFrame);
+    // Rocks cover the face from the toe (toeLength offshore of the origin) to sEnd, between the walls.
+    const double rows = grid.empty() ? 0.0 : std::max_element(grid.begin(), grid.end(), [](auto& a, auto& b) {
+                                                 return a.s < b.s;
+                                               })->s;
+    const double sEnd = rs.sEnd > 0.0 ? rs.sEnd : rows + dn;
+    const Vec3 originFrame = toFrame * Vec3(slope->origin.x(), 0.0, slope->origin.y());
+    const double x0 = originFrame.x() - rs.toeLength, x1 = originFrame.x() + sEnd;
+    const double y0 = std::isfinite(wallLo) ? wallLo : gridSettings.yStart;
+    const double y1 = std::isfinite(wallHi) ? wallHi : y0 + (gridSettings.width > 0 ? gridSettings.width : wallWidth);
+    // A jittered grid of drop points (random sequential drops cluster and leave holes).
+    const double area = (x1 - x0) * (y1 - y0);
+    const double spacing = std::sqrt(area / std::max(1, rs.count));
+    const int cols = std::max(1, static_cast<int>(std::round((y1 - y0) / spacing)));
+    const int rowsR = std::max(1, (rs.count + cols - 1) / cols);
+    const double dxr = (x1 - x0) / rowsR, dyr = (y1 - y0) / cols;
+    for (int i = 0; i < rs.count; ++i) {
+      std::mt19937_64 rng = stream(ps.seed ^ 0x726f636bULL, static_cast<std::uint64_t>(i));
+      const int layerPass = i / (rowsR * cols);
+      const int k = i % (rowsR * cols);
+      const double px = x0 + (k / cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dxr;
+      const double py = y0 + (k % cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dyr;
+      const auto& [sceneShape, shapeId] = rockShapes[rng() % rockShapes.size()];
+      const simulation::ShapeModel& model = world.shape(shapeId);
+      // Log-uniform nominal diameter between Dn50 / sqrt(g) and Dn50 sqrt(g): Dn85 / Dn15 = g^0.7.
+      const double rockDn = rs.dn50 * std::pow(rs.grading, uniform(rng) - 0.5);
+      const double scale = rockDn / std::cbrt(model.unitMass.volume);
+      Placed best;
+      Quat bestNatural = Quat::Identity();
+      bool found = false;
+      for (int t = 0; t < std::max(1, rs.tries) * 4 && !(found && t >= rs.tries); ++t) {
+        const Quat natural = uniformRotation(rng);
+        Placed u;
+        u.shape = &model;
+        u.scale = scale;
+        u.R = (toFrame * natural * model.naturalToBody.conjugate()).toRotationMatrix();
+        u.radius = model.radius * scale;
+        u.x = Vec3(px, py, 0.0);
+        if (!deposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
+        if (!found || u.x.z() < best.x.z()) {
+          best = u;
+          bestNatural = natural;
+          found = true;
+        }
+      }
+      if (!found) continue; // nothing fits here (a wall corner): the next drop point
+      const Mat3 before = best.R;
+      deposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
+      // The orientation change of the slide, applied to the natural frame (in world axes).
+      const Quat tiltFrame(Mat3(best.R * before.transpose()));
+      const Quat natural = (frame * tiltFrame * toFrame * bestNatural).normalized();
+      deposit.add(best);
+      BodySpec spec;
+      spec.name = fmt::format("rock_{:04d}", rockBodies.size());
+      spec.shape = shapeId;
+      spec.scale = scale;
+      spec.material = static_cast<simulation::MaterialId>(rockMaterial);
+      spec.fixed = true;
+      spec.position = frame * best.x;
+      spec.orientation = natural;
+      const BodyId b = world.addBody(spec);
+      rockBodies.push_back(b);
+      scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial,
+                                       rockDn * rockDn * rockDn, true));
+    }
+    result.summary.rocks = static_cast<int>(rockBodies.size());
+    log->info("rock underlayer: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", rockBodies.size(),
+              rs.dn50, rs.grading, x1 - x0, y1 - y0);
+  }
+
+  // 2. The units.
+  const std::size_t firstUnitBody = world.bodies().size();
+  // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
+  const Deposit staticDeposit =
+      makeDeposit(result.built, Quat::Identity(), 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
+  const auto rebuildDeposit = [&]() {
+    Deposit d = staticDeposit;
+    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(d, world, b, Quat::Identity());
+    return d;
+  };
+  Deposit deposit = rebuildDeposit();
+  const int total = static_cast<int>(grid.size());
+  const double step = 0.05 * dn;
+  for (int i = 0; i < total; ++i) {
+    const GridPoint& g = grid[static_cast<std::size_t>(i)];
+    std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
+    Placed best;
+    Quat bestNatural = Quat::Identity();
+    bool found = false;
+    for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
+      const Quat natural = unitOrientation(ps.orientation, rng);
+      Placed u;
+      u.shape = &unitModel;
+      u.scale = unitScale;
+      u.R = (natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
+      u.radius = unitModel.radius * unitScale;
+      u.x = Vec3(g.plan.x(), g.plan.y(), 0.0);
+      if (!deposit.lower(u, step, clearance, g.startZ ? *g.startZ : Deposit::kAbove)) continue;
+      if (!found || u.x.z() < best.x.z()) {
+        best = u;
+        bestNatural = natural;
+        found = true;
+      }
+    }
+    const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
+    if (!found)
+      core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
+                                        "(between the walls, or blocked where it starts); move the point or the walls",
+                      name, i, g.plan.x(), g.plan.y());
+    BodySpec spec;
+    spec.name = name;
+    spec.shape = unitShapeId;
+    spec.scale = unitScale;
+    spec.material = static_cast<simulation::MaterialId>(unitMaterial);
+    spec.position = best.x;
+    spec.orientation = bestNatural;
+    UnitRecord rec;
+    rec.name = name;
+    rec.gridPoint = best.x;
+    rec.releaseTime = world.time();
+    if (ps.method == Method::Crane && options.dynamics) {
+      spec.velocity = Vec3(0.0, 0.0, -ps.crane.speed);
+      rec.body = world.addBody(spec);
+      const auto [t, rest] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime);
+      rec.restTime = t;
+      rec.capped = !rest;
+      if (!rest) ++result.summary.cappedUnits;
+      deposit = rebuildDeposit(); // the pack as it now lies
+    } else {
+      rec.body = world.addBody(spec);
+      deposit.add(best);
+    }
+    result.units.push_back(rec);
+    if (progress) progress(i + 1, total, world.time());
+  }
+
+  // 3. Settle: until every unit sleeps, then wake them all and again, until a round moves no unit
+  // by more than kCreep: a unit that fell asleep while creeping down the face moves on when woken,
+  // as it would when the placed scene is run.
+  constexpr double kCreep = 1.0e-4; // m: a tenth of the 1 mm a pack at rest may drift in 60 s
+  const double settleStart = world.time();
+  bool rest = false;
+  for (int round = 0; options.dynamics && world.time() - settleStart < ps.settle.maxTime; ++round) {
+    std::vector<Vec3> before;
+    for (const UnitRecord& u : result.units) before.push_back(world.bodies().position(u.body));
+    if (round > 0) world.wakeAll();
+    const double left = ps.settle.maxTime - (world.time() - settleStart);
+    const auto [t, asleep] = settle(world, firstUnitBody, ps.settle.restSpeed, round == 0 ? ps.settle.minTime : 0.0,
+                                    left, true);
+    double creep = 0.0;
+    for (std::size_t k = 0; k < result.units.size(); ++k)
+      creep = std::max(creep, (world.bodies().position(result.units[k].body) - before[k]).norm());
+    log->info("settling round {}: {:.2f} s, largest move {:.3g} m{}", round + 1, t, creep, asleep ? "" : " (time cap)");
+    if (!asleep) break;
+    if (round > 0 && creep < kCreep) {
+      rest = true;
+      break;
+    }
+  }
+  if (options.dynamics)
+    log->info("settled {} after {:.2f} s", rest ? "to rest" : "(time cap reached)", world.time() - settleStart);
+
+  // The placed scene: the units where they lie.
+  for (const UnitRecord& u : result.units)
+    scene.bodies.push_back(sceneBody(world, u.body, u.name, unitShape, unitMaterial, ps.volume, false));
+  const auto& bodies = world.bodies();
+  for (const UnitRecord& u : result.units) {
+    const double moved = (bodies.position(u.body) - u.gridPoint).norm() / dn;
+    result.summary.maxDisplacementDn = std::max(result.summary.maxDisplacementDn, moved);
+    if (moved > 1.0) result.summary.moved.push_back(u.name);
+    const double speed = bodies.velocity(u.body).norm();
+    if (bodies.isAwake(u.body) && speed > ps.settle.restSpeed) result.summary.moving.push_back(u.name);
+  }
+
+  // Summary measures over the window of the rows.
+  PlacementSummary& sm = result.summary;
+  sm.units = total;
+  sm.dn = dn;
+  sm.simulatedTime = world.time();
+  if (slope != nullptr && gridSettings.file.empty()) {
+    const double a = std::atan(slope->tanAlpha);
+    const Vec3 along(std::cos(a), 0.0, std::sin(a)), normal(-std::sin(a), 0.0, std::cos(a));
+    const Vec3 origin(slope->origin.x(), 0.0, slope->origin.y());
+    double s0 = std::numeric_limits<double>::infinity(), s1 = -s0;
+    for (const GridPoint& g : grid) {
+      s0 = std::min(s0, g.s);
+      s1 = std::max(s1, g.s);
+    }
+    const GridSpacing spacing = gridSpacing(gridSettings, dn, wallWidth, scene.sourceName);
+    sm.windowArea = (s1 - s0) * spacing.width;
+    const auto topAbove = [&](BodyId b) {
+      const auto& model = world.shape(world.bodyShape(b));
+      double top = -std::numeric_limits<double>::infinity();
+      for (const Vec3& v : model.mesh.vertices) top = std::max(top, (bodies.toWorld(b, world.bodyScale(b) * v) - origin).dot(normal));
+      return top;
+    };
+    const auto inWindow = [&](BodyId b) {
+      const double s = (bodies.position(b) - origin).dot(along);
+      return s >= s0 && s <= s1;
+    };
+    double unitTop = 0.0, rockTop = 0.0;
+    int nRock = 0;
+    for (const UnitRecord& u : result.units) {
+      if (!inWindow(u.body)) continue;
+      ++sm.windowUnits;
+      unitTop += topAbove(u.body);
+    }
+    for (BodyId b : rockBodies) {
+      if (!inWindow(b)) continue;
+      ++nRock;
+      rockTop += topAbove(b);
+    }
+    if (sm.windowUnits > 0 && sm.windowArea > 0.0) {
+      sm.packingDensity = sm.windowUnits * dn * dn / sm.windowArea;
+      sm.layerThickness = unitTop / sm.windowUnits - (nRock > 0 ? rockTop / nRock : 0.0);
+      if (sm.layerThickness > 0.0)
+        sm.porosity = 1.0 - sm.windowUnits * ps.volume / (sm.windowArea * sm.layerThickness);
+    }
+  }
+  sm.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  return result;
+}
+
+} // namespace armour::placement

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Placement (issue 5): generated grids reproduce their analytic packing density; grid files are
+// read or refused with the file and line; no unit starts overlapping anything (the pack as
+// released has no engaged contact point); a placement is reproducible from its seed and
+// independent of the thread count; a crane-placed pack at rest stays at rest (< 1 mm in 60 s)
+// when its placed scene is run; a rock underlayer lies on the slope face.
+
+#include "core/Error.hpp"
+#include "io/SceneReader.hpp"
+#include "placement/PlacedScene.hpp"
+#include "placement/PlacementGrid.hpp"
+#include "placement/Placer.hpp"
+#include "simulation/SceneBuilder.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace armour;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A 1:2 slope with the toe of seed 001 between walls 6.6 m apart: friction 0.75 > tan(alpha) =
+/// 0.5, so single Antifer cubes rest on the face. Two rows of two 1 m^3 cubes (a few seconds).
+std::string antiferScene(const std::string& method, const std::string& extra = "") {
+  return R"(
+description: placement test
+duration: 1
+seed: 5
+materials:
+  concrete: {density: 2350, friction: 0.75, restitution: 0.05}
+static:
+  - type: slope
+    name: underlayer
+    material: concrete
+    origin: [0, 0]
+    cot: 2
+    crest_height: 6
+    toe_height: 1.5
+    toe_top_width: 2
+    toe_base_width: 5
+  - {type: wall, name: south, material: concrete, axis: y, position: 0, side: min}
+  - {type: wall, name: north, material: concrete, axis: y, position: 4.4, side: max}
+placement:
+  shape: antifer
+  material: concrete
+  volume: 1.0
+  method: )" + method + R"(
+  grid: {rows: 2, units_per_row: 2, packing_density: 0.45, first_row: 0.7}
+  orientation: {mode: perturbed, euler_deg: [0, -26.565, 0], max_angle_deg: 10}
+  crane: {speed: 0.5, rest_speed: 0.01, max_time: 4}
+  settle: {max_time: 10}
+)" + extra;
+}
+
+io::Scene parse(const std::string& yaml) { return io::parseScene(yaml, fs::temp_directory_path(), "placement-test.yaml"); }
+
+double maxDistance(const io::Scene& a, const io::Scene& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) d = std::max(d, (a.bodies[i].position - b.bodies[i].position).norm());
+  return d;
+}
+
+} // namespace
+
+TEST(PlacementGrid, StaggeredGridHasItsAnalyticPackingDensity) {
+  // Seed 000's trunk: rows alternately of 12 and 11 units over 45 m, phi = 0.625, Dn = 1.71 m.
+  placement::GridSettings g;
+  g.rows = 21;
+  g.unitsPerRow = {12, 11};
+  g.packingDensity = 0.625;
+  g.firstRow = 0.5;
+  const double dn = std::cbrt(5.0);
+  const placement::GridSlope slope{2.0, 1.0, 0.75};
+  const auto points = placement::generateGrid(g, slope, dn, 45.0, 1, "test");
+  ASSERT_EQ(points.size(), 242u); // 11 x 12 + 10 x 11
+  const double dx = 45.0 / 12.0, dy = 11.5 * dn * dn / (0.625 * 45.0);
+  // phi = n Dn^2 / (W dy) exactly as designed (1e-12: round-off only).
+  EXPECT_NEAR(placement::gridSpacing(g, dn, 45.0, "test").packingDensity, 0.625, 1e-12);
+  const double cosA = 0.8; // 4H:3V
+  for (const auto& p : points) {
+    EXPECT_NEAR(p.s, 0.5 * dn + p.row * dy, 1e-12);
+    EXPECT_NEAR(p.plan.x(), 2.0 + p.s * cosA, 1e-12);
+    const double expectY = (p.column + 0.5) * dx + (p.row % 2 == 1 ? 0.5 * dx : 0.0);
+    EXPECT_NEAR(p.plan.y(), expectY, 1e-9) << "row " << p.row << " column " << p.column;
+  }
+  // Counting units in a window of whole cells of the slope plane gives phi (the issue's check):
+  // rows 2..19 (18 rows, alternately 12 and 11 units) over 45 m x 18 dy.
+  int n = 0;
+  for (const auto& p : points) n += p.row >= 2 && p.row < 20 ? 1 : 0;
+  EXPECT_EQ(n, 9 * 12 + 9 * 11);
+  EXPECT_NEAR(n * dn * dn / (45.0 * 18.0 * dy), 0.625, 1e-12);
+}
+
+TEST(PlacementGrid, ParallelogramGridWrapsAlongTheTrunk) {
+  // Seed 003: 4.011 m along the trunk, 2.754 m up the slope, rows shifted for a 60 degree line.
+  placement::GridSettings g;
+  g.rows = 4;
+  g.unitsPerRow = {5};
+  g.dx = 4.011 / std::cbrt(16.0);
+  g.dy = 2.754 / std::cbrt(16.0);
+  g.stagger = 2.754 / std::tan(60.0 * std::numbers::pi / 180.0) / 4.011;
+  const auto points = placement::generateGrid(g, {0.0, 0.0, 0.5}, std::cbrt(16.0), 5 * 4.011, 1, "test");
+  for (const auto& p : points) {
+    EXPECT_GE(p.plan.y(), 0.0);
+    EXPECT_LT(p.plan.y(), 5 * 4.011);
+  }
+  // Row 1 is shifted by 2.754 / tan 60 = 1.590 m.
+  EXPECT_NEAR(points[5].plan.y() - points[0].plan.y(), 1.5900, 1e-3);
+}
+
+TEST(PlacementGrid, RefusesImpossibleGridsAndBadFiles) {
+  placement::GridSettings g;
+  g.rows = 2;
+  g.unitsPerRow = {13};
+  g.dx = 2.0;
+  g.dy = 1.0;
+  try {
+    (void)placement::generateGrid(g, {}, 1.0, 20.0, 1, "trunk.yaml");
+    FAIL() << "13 units of 2 Dn in 20 m accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the width"), std::string::npos) << e.what();
+  }
+  const fs::path file = fs::temp_directory_path() / "armour-grid-test.csv";
+  std::ofstream(file) << "x,y,z\n1,2,3\n4,five,6\n";
+  try {
+    (void)placement::readGridFile(file.string());
+    FAIL() << "a bad line accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(":3"), std::string::npos) << e.what(); // the line number
+  }
+  std::ofstream(file) << "# centres\n1.5,2\n3,4,5\n";
+  const auto points = placement::readGridFile(file.string());
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_FALSE(points[0].startZ.has_value());
+  EXPECT_DOUBLE_EQ(*points[1].startZ, 5.0);
+  fs::remove(file);
+}
+
+TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
+  const auto refuses = [](const std::string& yaml, const std::string& expect) {
+    try {
+      (void)parse(yaml);
+      ADD_FAILURE() << "accepted: " << expect;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  };
+  std::string s = antiferScene("crane");
+  refuses(std::string(s).replace(s.find("method: crane"), 13, "method: sling"), "expected one of crane, grid");
+  refuses(std::string(s).replace(s.find("packing_density"), 15, "packing_densty"), "did you mean 'packing_density'");
+  refuses(std::string(s).replace(s.find("mode: perturbed"), 15, "mode: random"), "remove euler_deg");
+  refuses(std::string(s).replace(s.find("material: concrete\n  volume"), 18, "material: steel"), "no such material");
+}
+
+TEST(Placement, NoUnitStartsOverlapping) {
+  // Every unit lowered geometrically onto the slope and those before it: the pack as released has
+  // no engaged contact point at all (the clearance is 0.002 Dn), so no unit starts inside another
+  // or inside the underlayer.
+  const io::Scene scene = parse(antiferScene("grid"));
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  placement::PlacementResult r = placement::place(scene, {}, options);
+  ASSERT_EQ(r.units.size(), 4u);
+  auto& world = *r.built.world;
+  world.evaluateContacts();
+  EXPECT_EQ(world.lastStep().contactPoints, 0u);
+  EXPECT_EQ(world.lastStep().maxOverlap, 0.0);
+  // And each one is close to what it landed on: within the clearance plus one bisection step
+  // (0.05 Dn / 32) of the underlayer or another unit, i.e. not left hanging above it.
+  for (const auto& u : r.units) {
+    EXPECT_LT(u.gridPoint.z(), 3.0) << u.name; // well below the 6 m crest: it came down
+  }
+}
+
+TEST(Placement, ReproducibleFromItsSeedOnAnyThreadCount) {
+  const io::Scene scene = parse(antiferScene("crane"));
+  omp_set_num_threads(1);
+  const placement::PlacementResult a = placement::place(scene);
+  omp_set_num_threads(2);
+  const placement::PlacementResult b = placement::place(scene);
+  omp_set_num_threads(1);
+  ASSERT_EQ(a.scene.bodies.size(), b.scene.bodies.size());
+  for (std::size_t i = 0; i < a.scene.bodies.size(); ++i) {
+    EXPECT_EQ(a.scene.bodies[i].position, b.scene.bodies[i].position) << a.scene.bodies[i].name;
+    EXPECT_EQ(a.scene.bodies[i].orientation.coeffs(), b.scene.bodies[i].orientation.coeffs());
+  }
+  // A different seed gives a different pack.
+  const placement::PlacementResult c = placement::place(parse(antiferScene("crane", "  seed: 6\n")));
+  EXPECT_GT(maxDistance(a.scene, c.scene), 1e-3);
+}
+
+TEST(Placement, CranePlacedPackAtRestStaysAtRest) {
+  // The issue's check: the placed scene, run for 60 s with no loads, moves no unit by 1 mm.
+  const std::string input = antiferScene("crane");
+  const io::Scene scene = parse(input);
+  const placement::PlacementResult r = placement::place(scene);
+  EXPECT_TRUE(r.summary.moving.empty());
+  const io::Scene placed = parse(placement::placedSceneYaml(input, r));
+  ASSERT_EQ(placed.bodies.size(), 4u);
+  // The written scene reproduces the pack: positions to the last bit (shortest round-trip text).
+  for (std::size_t i = 0; i < placed.bodies.size(); ++i) EXPECT_EQ(placed.bodies[i].position, r.scene.bodies[i].position);
+  simulation::BuiltScene built = simulation::buildWorld(placed);
+  built.world->advanceTo(60.0);
+  double drift = 0.0;
+  for (std::size_t i = 0; i < placed.bodies.size(); ++i)
+    drift = std::max(drift, (built.world->bodies().position(built.bodyIndexOfSceneBody[i]) - placed.bodies[i].position).norm());
+  EXPECT_LT(drift, 1e-3) << "largest drift in 60 s";
+}
+
+TEST(Placement, RockUnderlayerLiesOnTheFace) {
+  // 40 rocks of Dn50 0.4 m dropped on the face: every one rests on the slope or on other rocks,
+  // with its centroid between 0 and 2.5 Dn50 above the face along its normal (a loose double
+  // layer), none below it, and none outside the walls.
+  const std::string rocks = "  rocks: {count: 40, dn50: 0.4, grading: 1.3, shapes: 4, s_end: 3, toe_length: 1}\n";
+  const io::Scene scene = parse(antiferScene("grid", rocks));
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  const placement::PlacementResult r = placement::place(scene, {}, options);
+  EXPECT_EQ(r.summary.rocks, 40);
+  const double a = std::atan(0.5);
+  const Eigen::Vector3d normal(-std::sin(a), 0.0, std::cos(a));
+  int onFace = 0;
+  for (const io::Body& b : r.scene.bodies) {
+    if (b.name.rfind("rock_", 0) != 0) continue;
+    EXPECT_TRUE(b.fixed);
+    EXPECT_GT(b.position.y(), 0.0);
+    EXPECT_LT(b.position.y(), 4.4);
+    if (b.position.x() < 0.3) continue; // on the toe
+    ++onFace;
+    const double height = b.position.dot(normal);
+    EXPECT_GT(height, 0.0) << b.name;
+    EXPECT_LT(height, 2.5 * 0.4) << b.name;
+  }
+  EXPECT_GT(onFace, 15);
+  // The units then land on the rocks, not through them.
+  auto& world = *r.built.world;
+  world.evaluateContacts();
+  EXPECT_EQ(world.lastStep().contactPoints, 0u);
+}
