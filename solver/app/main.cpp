@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 /// The `armour` program: one entry point, one subcommand per job.
 
+#include "app/AnalyseCommands.hpp"
 #include "app/CommandContext.hpp"
 #include "app/PlaceCommands.hpp"
 #include "app/RunCommands.hpp"
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   armour::app::addRunCommands(app, global);
   armour::app::addStormCommands(app, global);
   armour::app::addPlaceCommands(app, global);
+  armour::app::addAnalyseCommands(app, global);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {

@@ -366,6 +366,7 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     UnitRecord rec;
     rec.name = name;
     rec.gridPoint = best.x;
+    rec.releaseOrientation = bestNatural;
     rec.releaseTime = world.time();
     if (ps.method == Method::Crane && options.dynamics) {
       spec.velocity = Vec3(0.0, 0.0, -ps.crane.speed);

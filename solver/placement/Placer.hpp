@@ -33,6 +33,7 @@ using Vec3 = Eigen::Vector3d;
 struct UnitRecord {
   std::string name;
   Vec3 gridPoint = Vec3::Zero();   ///< where it was released: (x, y) of its grid point, z at first contact (unit: m)
+  Eigen::Quaterniond releaseOrientation = Eigen::Quaterniond::Identity(); ///< natural frame -> world at release
   double releaseTime = 0.0;        ///< simulated time of release (unit: s)
   double restTime = 0.0;           ///< crane: simulated time until the pack was at rest (unit: s)
   bool capped = false;             ///< crane: the next unit went before the pack was at rest (unit: -)

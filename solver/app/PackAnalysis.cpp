@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "app/PackAnalysis.hpp"
+
+#include "core/AtomicFile.hpp"
+#include "core/Error.hpp"
+#include "io/SceneReader.hpp"
+#include "simulation/SceneBuilder.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+namespace armour::app {
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("NaN"); }
+std::string json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) {
+      out.push_back(field);
+      field.clear();
+    } else if (c != '\r') field += c;
+  }
+  out.push_back(field);
+  return out;
+}
+
+} // namespace
+
+PoseMap readPoses(const std::filesystem::path& path) {
+  PoseMap poses;
+  const std::string ext = path.extension().string();
+  if (ext == ".yaml" || ext == ".yml") {
+    const io::Scene scene = io::readScene(path);
+    for (const io::Body& b : scene.bodies) poses[b.name] = {b.position, b.orientation};
+    return poses;
+  }
+  std::ifstream in(path);
+  if (!in) core::failInput(path.string(), "cannot open the state file; give a run's final_state.csv or a scene file");
+  std::string line;
+  if (!std::getline(in, line)) core::failInput(path.string(), "empty state file");
+  const auto header = splitCsv(line);
+  std::map<std::string, std::size_t> col;
+  for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+  for (const char* key : {"name", "x", "y", "z", "qw", "qx", "qy", "qz"})
+    if (!col.count(key))
+      core::failInput(path.string(), "column '{}' missing; a state file has the columns of final_state.csv (name, x, y, "
+                                     "z, qw, qx, qy, qz)", key);
+  int lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty()) continue;
+    const auto f = splitCsv(line);
+    const auto value = [&](const char* key) {
+      const std::size_t i = col[key];
+      try {
+        if (i >= f.size()) throw std::invalid_argument("missing");
+        const double v = std::stod(f[i]);
+        if (!std::isfinite(v)) throw std::invalid_argument("not finite");
+        return v;
+      } catch (const std::exception&) {
+        core::failInput(fmt::format("{}:{}", path.string(), lineNo), "column {} = '{}': not a finite number", key,
+                        i < f.size() ? f[i] : "");
+      }
+    };
+    BodyPose p;
+    p.position = {value("x"), value("y"), value("z")};
+    p.orientation = Eigen::Quaterniond(value("qw"), value("qx"), value("qy"), value("qz")).normalized();
+    std::string name = f[col["name"]];
+    if (name.size() >= 2 && name.front() == '"') name = name.substr(1, name.size() - 2);
+    poses[name] = p;
+  }
+  return poses;
+}
+
+PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, const PoseMap* state,
+                       const PoseMap* reference) {
+  io::Scene scene = input;
+  scene.placement = {};
+  if (state != nullptr) {
+    for (io::Body& b : scene.bodies) {
+      const auto it = state->find(b.name);
+      if (it == state->end())
+        core::failInput(scene.sourceName, "body '{}' is not in the state file; give the state of a run of this scene",
+                        b.name);
+      b.position = it->second.position;
+      b.orientation = it->second.orientation;
+    }
+  }
+  // Units and supports.
+  std::vector<std::size_t> units;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const io::Body& b = scene.bodies[i];
+    if (!b.fixed && b.name.rfind(settings.unitPrefix, 0) == 0) units.push_back(i);
+  }
+  if (units.empty())
+    core::failInput(scene.sourceName, "no units to analyse: no movable body{}", settings.unitPrefix.empty()
+                                                                                   ? std::string()
+                                                                                   : " named " + settings.unitPrefix + "*");
+  // The unit axis: all units of one shape (the first unit's).
+  const io::ShapeSpec& shape = scene.shapes[scene.bodies[units.front()].shape];
+  const std::string generator = shape.source == io::ShapeSource::Generator ? shape.generator : shape.name;
+  const Eigen::Vector3d bodyAxis = analysis::unitAxisOf(generator, settings.axis);
+
+  PackReport r;
+  r.axis = settings.axis;
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<Eigen::Quaterniond> orientations;
+  std::vector<double> dn;
+  for (std::size_t i : units) {
+    const io::Body& b = scene.bodies[i];
+    positions.push_back(b.position);
+    orientations.push_back(b.orientation);
+  }
+  // The World at these poses: sizes and contacts.
+  simulation::BuiltScene built = simulation::buildWorld(scene);
+  simulation::World& world = *built.world;
+  for (std::size_t i : units) {
+    const auto b = built.bodyIndexOfSceneBody[i];
+    dn.push_back(std::cbrt(world.shape(world.bodyShape(b)).unitMass.volume) * world.bodyScale(b));
+  }
+  world.setRecordContacts(true);
+  world.evaluateContacts();
+  const std::size_t n = world.bodies().size();
+  std::vector<analysis::BodyRole> roles(n + 1, analysis::BodyRole::support); // n: the static geometry
+  for (std::size_t i : units) roles[built.bodyIndexOfSceneBody[i]] = analysis::BodyRole::unit;
+  std::vector<analysis::Contact> contacts;
+  for (const auto& p : world.contactPatches()) {
+    const std::size_t other = p.bodyB < 0 ? n : static_cast<std::size_t>(p.bodyB);
+    contacts.push_back({p.bodyA, other, p.force.norm()});
+  }
+  r.contacts = analysis::contactNumbers(contacts, roles);
+
+  // The slope frame: the face of the scene's (first) slope, or a plane fitted through the units.
+  if (!scene.statics.slopes.empty()) {
+    const io::StaticSlope& s = scene.statics.slopes.front();
+    r.frame = analysis::SlopeFrame::fromTanAlpha(s.tanAlpha, Eigen::Vector3d(s.origin.x(), 0.0, s.origin.y()));
+    r.frameFromSlope = true;
+  } else {
+    r.frame = analysis::fitSlopeFrame(positions);
+  }
+  const auto axes = analysis::noseAxesWorld(orientations, bodyAxis);
+  r.p2Q = analysis::p2QTensor(axes);
+  try {
+    r.p2Mean = analysis::p2MeanDirector(axes);
+  } catch (const core::InputError&) {
+    r.p2Mean.p2 = std::nan(""); // the axes cancel: no mean direction
+  }
+  if (units.size() >= 3) {
+    try {
+      r.packingHull = analysis::packingDensityHull(positions, dn, r.frame);
+    } catch (const core::InputError&) {
+      // All units in a line: no area.
+    }
+  }
+  std::vector<double> tops;
+  for (std::size_t k = 0; k < units.size(); ++k) {
+    const auto b = built.bodyIndexOfSceneBody[units[k]];
+    const auto& model = world.shape(world.bodyShape(b));
+    geometry::TriangleMesh mesh = model.mesh; // principal frame at scale 1: scale it, use the body orientation
+    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
+    tops.push_back(analysis::normalExtent(mesh, positions[k], world.bodies().orientation(b), r.frame).y());
+  }
+  if (r.frameFromSlope && r.packingHull.area > 0.0) {
+    double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, t0 = s0, t1 = -s0;
+    for (const auto& p : positions) {
+      const Eigen::Vector3d l = r.frame.toLocal(p);
+      s0 = std::min(s0, l.x());
+      s1 = std::max(s1, l.x());
+      t0 = std::min(t0, l.y());
+      t1 = std::max(t1, l.y());
+    }
+    try {
+      r.thickness = analysis::layerThickness(positions, tops, dn, r.frame, {s0, s1 + 1e-9, t0, t1 + 1e-9});
+      double volume = 0.0;
+      for (double d : dn) volume += d * d * d;
+      r.porosity = 1.0 - volume / (r.packingHull.area * r.thickness->thickness);
+    } catch (const core::InputError&) {
+    }
+  }
+  if (reference != nullptr) {
+    std::vector<Eigen::Vector3d> before;
+    std::vector<Eigen::Quaterniond> qBefore;
+    for (std::size_t i : units) {
+      const auto it = reference->find(scene.bodies[i].name);
+      if (it == reference->end())
+        core::failInput(scene.sourceName, "unit '{}' is not in the reference state", scene.bodies[i].name);
+      before.push_back(it->second.position);
+      qBefore.push_back(it->second.orientation);
+    }
+    r.displacement = analysis::measureDisplacement(before, positions, qBefore, orientations, dn, r.frame,
+                                                   settings.displacement);
+  }
+  for (std::size_t k = 0; k < units.size(); ++k) {
+    UnitRow row;
+    row.name = scene.bodies[units[k]].name;
+    row.position = positions[k];
+    row.local = r.frame.toLocal(positions[k]);
+    row.dn = dn[k];
+    row.attitude = analysis::attitude(axes[k], r.frame);
+    row.stereo = analysis::stereonetPoint(row.attitude);
+    const auto& c = r.contacts.bodies[built.bodyIndexOfSceneBody[units[k]]];
+    row.contactNumber = c.contactNumber;
+    row.unitNeighbours = c.unitNeighbours;
+    row.supportNeighbours = c.supportNeighbours;
+    row.maxContactForce = c.maxForce;
+    if (r.displacement) row.displacement = r.displacement->units[k];
+    r.units.push_back(row);
+  }
+  return r;
+}
+
+std::string packText(const PackReport& r) {
+  std::string t;
+  t += fmt::format("units               {}\n", r.units.size());
+  t += fmt::format("slope frame         {} (tan alpha {:.4f})\n", r.frameFromSlope ? "the scene's slope" : "fitted to the units",
+                   r.frame.tanAlpha());
+  t += fmt::format("contacts            coordination number {:.3f}, contact number {:.2f} (min {}, max {}), "
+                   "largest pair force {:.4g} N\n",
+                   r.contacts.coordinationNumber, r.contacts.meanContactNumber, r.contacts.minContactNumber,
+                   r.contacts.maxContactNumber, r.contacts.maxForce);
+  t += fmt::format("orientation ({})    P2 {:.4f} (seed 001 eq. 4, mean director), {:.4f} (Q tensor)\n", r.axis,
+                   r.p2Mean.p2, r.p2Q.p2);
+  if (r.packingHull.area > 0.0)
+    t += fmt::format("packing density     {:.4f} over the hull of the centroids ({:.1f} m^2)\n", r.packingHull.phi,
+                     r.packingHull.area);
+  if (r.thickness)
+    t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}), porosity {:.3f}\n", r.thickness->thickness,
+                     r.thickness->layerCoefficient, r.porosity);
+  if (r.displacement) {
+    const auto& d = *r.displacement;
+    t += fmt::format("displacement        delta_rms {:.4g} m ({:.4g} Dn), horizontal {:.4g} m; mean {:.4g} Dn, max {:.4g} "
+                     "Dn; total {:.4g} m\n",
+                     d.deltaRms, d.deltaRmsOverDn, d.deltaRmsHorizontal, d.meanDn, d.maxDn, d.total);
+    t += fmt::format("middle half (003)   D {:.4g} m, D_z {:.4g} m, D'_z {:.4g} m\n", d.D, d.x.mean, d.x.meanAbsolute);
+    for (std::size_t k = 0; k < d.thresholdsDn.size(); ++k)
+      t += fmt::format("moved > {:.2g} Dn      {} units\n", d.thresholdsDn[k], d.movedCounts[k]);
+    t += fmt::format("rocking             {} units (rotation > {:.3g} deg)\n", d.rockingCount,
+                     d.units.empty() ? 0.0 : 5.0);
+  }
+  return t;
+}
+
+void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) core::failInput(folder.string(), "cannot create the output folder: {}", ec.message());
+  core::writeFileAtomically(folder / "units.csv", [&](std::ostream& o) {
+    o << "unit,x,y,z,s,t,dn,dip_deg,dip_azimuth_deg,stereo_x,stereo_y,contact_number,unit_neighbours,"
+         "support_neighbours,max_contact_force_N";
+    if (r.displacement) o << ",disp_s,disp_t,disp_n,displacement_dn,rotation_deg,rocking";
+    o << "\n";
+    for (const UnitRow& u : r.units) {
+      o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", u.name, num(u.position.x()), num(u.position.y()),
+                       num(u.position.z()), num(u.local.x()), num(u.local.y()), num(u.dn), num(u.attitude.dip * kDeg),
+                       num(u.attitude.dipAzimuth * kDeg), num(u.stereo.x()), num(u.stereo.y()), u.contactNumber,
+                       u.unitNeighbours, u.supportNeighbours, num(u.maxContactForce));
+      if (u.displacement) {
+        const auto& d = *u.displacement;
+        o << fmt::format(",{},{},{},{},{},{}", num(d.local.x()), num(d.local.y()), num(d.local.z()), num(d.distanceDn),
+                         num(d.rotation * kDeg), d.rocking ? 1 : 0);
+      }
+      o << "\n";
+    }
+  });
+  core::writeFileAtomically(folder / "pack.txt", [&](std::ostream& o) { o << packText(r); });
+  core::writeFileAtomically(folder / "pack.json", [&](std::ostream& o) {
+    o << "{\n";
+    o << fmt::format("  \"units\": {},\n  \"axis\": \"{}\",\n  \"p2_mean_director\": {},\n  \"p2_q_tensor\": {},\n",
+                     r.units.size(), r.axis, json(r.p2Mean.p2), json(r.p2Q.p2));
+    o << fmt::format("  \"coordination_number\": {},\n  \"mean_contact_number\": {},\n  \"max_contact_force_N\": {},\n",
+                     json(r.contacts.coordinationNumber), json(r.contacts.meanContactNumber), json(r.contacts.maxForce));
+    o << fmt::format("  \"packing_density_hull\": {},\n  \"hull_area_m2\": {},\n", json(r.packingHull.phi),
+                     json(r.packingHull.area));
+    o << fmt::format("  \"layer_thickness_m\": {},\n  \"porosity\": {}", json(r.thickness ? r.thickness->thickness : NAN),
+                     json(r.thickness ? r.porosity : NAN));
+    if (r.displacement) {
+      const auto& d = *r.displacement;
+      std::vector<std::string> counts;
+      for (std::size_t k = 0; k < d.thresholdsDn.size(); ++k)
+        counts.push_back(fmt::format("\"{}\": {}", d.thresholdsDn[k], d.movedCounts[k]));
+      o << fmt::format(",\n  \"delta_rms_m\": {},\n  \"delta_rms_horizontal_m\": {},\n  \"delta_rms_dn\": {},\n"
+                       "  \"mean_displacement_dn\": {},\n  \"max_displacement_dn\": {},\n  \"total_displacement_m\": {},\n"
+                       "  \"D_m\": {},\n  \"D_z_m\": {},\n  \"D_z_prime_m\": {},\n  \"moved_more_than_dn\": {{{}}},\n"
+                       "  \"rocking_units\": {}",
+                       json(d.deltaRms), json(d.deltaRmsHorizontal), json(d.deltaRmsOverDn), json(d.meanDn),
+                       json(d.maxDn), json(d.total), json(d.D), json(d.x.mean), json(d.x.meanAbsolute),
+                       fmt::join(counts, ", "), d.rockingCount);
+    }
+    o << "\n}\n";
+  });
+}
+
+} // namespace armour::app

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file PackAnalysis.hpp
+/// The measures of a pack as `armour analyse` and `armour ensemble` report them: the scene's
+/// World is built at the given state, its contacts evaluated (contact number, coordination
+/// number, largest contact force), and the plain-data measures of armour::analysis applied
+/// (orientation of a unit axis against the slope, P2 in both forms, packing density, layer
+/// thickness and porosity, displacements from a reference state). docs/placement.md, "Analysis".
+///
+/// Units are the scene's movable bodies (or those whose name starts with a prefix); fixed bodies
+/// (underlayer rocks) and the static geometry are supports. The slope frame is the scene's slope
+/// (its face plane) when it has one, else the plane fitted through the units' centroids.
+
+#include "analysis/Displacement.hpp"
+#include "analysis/OrderParameters.hpp"
+#include "analysis/Orientation.hpp"
+#include "analysis/PackGeometry.hpp"
+#include "io/Scene.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace armour::app {
+
+/// A pose per body name (from final_state.csv or a scene).
+struct BodyPose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity(); ///< natural shape frame -> world
+};
+using PoseMap = std::map<std::string, BodyPose>;
+
+/// Poses from a run's final_state.csv (columns name, x, y, z, qw, qx, qy, qz) or from a scene
+/// file (its bodies). Throws core::InputError naming the file and line.
+PoseMap readPoses(const std::filesystem::path& path);
+
+struct AnalyseSettings {
+  std::string unitPrefix;          ///< units are the movable bodies whose name starts with it (empty: all)
+  std::string axis = "nose";       ///< the unit axis for orientations and P2 (analysis::unitAxesOf)
+  analysis::DisplacementSettings displacement;
+};
+
+/// One unit's row of units.csv.
+struct UnitRow {
+  std::string name;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d local = Eigen::Vector3d::Zero(); ///< (s, t, n) in the slope frame (unit: m)
+  double dn = 0.0;
+  analysis::AxisAttitude attitude;
+  Eigen::Vector2d stereo = Eigen::Vector2d::Zero();
+  std::size_t contactNumber = 0, unitNeighbours = 0, supportNeighbours = 0;
+  double maxContactForce = 0.0;   ///< unit: N
+  std::optional<analysis::UnitDisplacement> displacement;
+};
+
+struct PackReport {
+  std::vector<UnitRow> units;
+  analysis::SlopeFrame frame;
+  bool frameFromSlope = false;
+  analysis::OrderParameter p2Mean, p2Q;
+  analysis::PackContacts contacts;
+  analysis::PackingDensity packingHull;
+  std::optional<analysis::LayerThickness> thickness;
+  double porosity = 0.0;            ///< 1 - N V / (A t) over the hull (unit: -); 0 without a thickness
+  std::optional<analysis::PackDisplacement> displacement;
+  std::string axis;
+};
+
+/// Analyse `scene` at its bodies' poses (optionally overridden by `state`), with displacements
+/// from `reference` when given.
+PackReport analysePack(const io::Scene& scene, const AnalyseSettings& settings, const PoseMap* state = nullptr,
+                       const PoseMap* reference = nullptr);
+
+/// units.csv (the columns utilities/plot_pack.py reads), pack.json and pack.txt into `folder`.
+void writePackReport(const PackReport& report, const std::filesystem::path& folder);
+
+/// The pack summary as text lines.
+std::string packText(const PackReport& report);
+
+} // namespace armour::app
