@@ -149,7 +149,14 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     r.frame = analysis::SlopeFrame::fromTanAlpha(s.tanAlpha, Eigen::Vector3d(s.origin.x(), 0.0, s.origin.y()));
     r.frameFromSlope = true;
   } else {
-    r.frame = analysis::fitSlopeFrame(positions);
+    try {
+      r.frame = analysis::fitSlopeFrame(positions);
+    } catch (const core::InputError&) {
+      // No spread along x to fit a gradient to (a tower, a single column): a level plane.
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& p : positions) mean += p / static_cast<double>(positions.size());
+      r.frame = analysis::SlopeFrame::fromTanAlpha(0.0, mean);
+    }
   }
   const auto axes = analysis::noseAxesWorld(orientations, bodyAxis);
   r.p2Q = analysis::p2QTensor(axes);

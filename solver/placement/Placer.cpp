@@ -116,6 +116,8 @@ bool allAsleep(const World& world, std::size_t firstBody) {
 std::pair<double, bool> settle(World& world, std::size_t firstBody, double restSpeed, double minTime, double maxTime,
                                bool untilAsleep = false) {
   untilAsleep = untilAsleep && world.settings().sleep.enabled;
+  auto log = core::logger("place");
+  auto lastReport = std::chrono::steady_clock::now();
   const double start = world.time();
   const double dt = world.timeStep();
   const int checkEvery = std::max(1, static_cast<int>(std::lround(0.01 / dt))); // every 10 ms
@@ -124,6 +126,11 @@ std::pair<double, bool> settle(World& world, std::size_t firstBody, double restS
     const double t = world.time() - start;
     if (k % checkEvery != 0 && t < maxTime) continue;
     const auto [ke, mass] = motion(world, firstBody);
+    if (const auto now = std::chrono::steady_clock::now(); now - lastReport > std::chrono::seconds(10)) {
+      lastReport = now;
+      log->info("  settling: t = {:.2f} s, rms speed {:.3g} m/s, {} awake", t, std::sqrt(2.0 * ke / std::max(mass, 1e-300)),
+                world.bodies().awakeBodies().size());
+    }
     if (t >= minTime && (untilAsleep ? allAsleep(world, firstBody) : ke <= 0.5 * mass * restSpeed * restSpeed))
       return {t, true};
     if (t >= maxTime) return {t, false};
@@ -181,7 +188,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   PlacementResult result;
   io::Scene& scene = result.scene;
   scene = input;
-  scene.placement = PlacementSettings{};
 
   const std::size_t unitShape = resolveShape(scene, ps.shape);
   const std::size_t unitMaterial = resolveMaterial(scene, ps.material, "placement.material");
@@ -209,6 +215,7 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
 
   // The World of the scene as given (statics and any bodies already there).
   result.built = simulation::buildWorld(scene);
+  scene.placement = PlacementSettings{}; // the placed scene has no placement block
   World& world = *result.built.world;
   const std::size_t givenBodies = scene.bodies.size();
   result.firstAddedBody = givenBodies;
@@ -309,6 +316,7 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       spec.orientation = natural;
       const BodyId b = world.addBody(spec);
       rockBodies.push_back(b);
+      if (rockBodies.size() % 500 == 0) log->info("rock underlayer: {} of {} rocks", rockBodies.size(), rs.count);
       scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial,
                                        rockDn * rockDn * rockDn, true));
     }
