@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// foam-proxy's reading of the surfaces function object's output (proxy/SurfaceSeries) and the
+// comparison used by the alpha/beta calibration (proxy/ProxyRun compareStorms).
+
+#include "proxy/ProxyRun.hpp"
+#include "proxy/SurfaceSeries.hpp"
+
+#include "core/Error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+namespace fs = std::filesystem;
+using namespace armour;
+
+namespace {
+
+fs::path tempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("armour-foam-proxy-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// A legacy VTK file as OpenFOAM v1912 writes it (surfaceFormat vtk, legacy, ascii): a unit
+/// square split into a quad and a triangle of the same plane, with p and U as cell data, the
+/// connectivity wrapped over lines the way OpenFOAM wraps it.
+void writeSurface(const fs::path& file, double p0) {
+  std::ofstream f(file);
+  f << "# vtk DataFile Version 2.0\ntime='0.05'\nASCII\nDATASET POLYDATA\nFIELD FieldData 1\nTimeValue 1 1 float\n0.05\n"
+       "POINTS 5 float\n0 0 0 1 0 0 1 0 1\n0 0 1 2 0 0\n"
+       "POLYGONS 2 9\n4 0 1 2 3 3\n1 4 2\n"
+       "CELL_DATA 2\nFIELD FieldData 2\np 1 2 float\n" << p0 << " " << p0 + 1.0 << "\nU 3 2 float\n1 2 3 4 5 6\n";
+}
+
+} // namespace
+
+TEST(SurfaceSeries, ReadsLegacyVtkOfTheSurfacesFunctionObject) {
+  const fs::path d = tempDir("read");
+  writeSurface(d / "units.vtk", 100.0);
+  const proxy::Surface s = proxy::readSurface(d / "units.vtk");
+  ASSERT_EQ(s.faces(), 2u);
+  // The quad's centre is the centre of the square; the triangle's is the mean of its corners.
+  EXPECT_NEAR(s.centreX[0], 0.5, 1e-12);
+  EXPECT_NEAR(s.centreZ[0], 0.5, 1e-12);
+  EXPECT_NEAR(s.centreX[1], (1.0 + 2.0 + 1.0) / 3.0, 1e-12);
+  EXPECT_NEAR(s.centreZ[1], 1.0 / 3.0, 1e-12);
+  // Area vectors: the quad 0-1-2-3 in the x-z plane has |S| = 1 along -y (right-hand rule).
+  EXPECT_NEAR(s.areaY[0], -1.0, 1e-12);
+  EXPECT_NEAR(std::abs(s.areaY[1]), 0.5, 1e-12);
+  EXPECT_EQ(s.field("p", 1)[1], 101.0);
+  EXPECT_EQ(s.field("U", 3)[4], 5.0);
+  EXPECT_THROW(s.field("alpha.water", 1), core::InputError);
+  EXPECT_THROW(s.field("p", 3), core::InputError);
+  EXPECT_TRUE(s.containsXZ(0, 0.5, 0.5));
+  EXPECT_FALSE(s.containsXZ(0, 1.5, 0.5));
+  EXPECT_THROW(proxy::readSurface(d / "missing.vtk"), core::InputError);
+  fs::remove_all(d);
+}
+
+TEST(SurfaceSeries, ListsNumericTimeFoldersInOrder) {
+  const fs::path d = tempDir("times");
+  for (const char* t : {"0.1", "0.05", "1e-1x", "10", "0.15"}) fs::create_directories(d / t);
+  const std::vector<proxy::SampleTime> times = proxy::listSampleTimes(d);
+  ASSERT_EQ(times.size(), 4u);
+  EXPECT_EQ(times[0].time, 0.05);
+  EXPECT_EQ(times[3].time, 10.0);
+  EXPECT_THROW(proxy::listSampleTimes(d / "nothing"), core::InputError);
+  fs::remove_all(d);
+}
+
+// The calibration metrics against known signals: a candidate equal to the reference delayed by
+// 0.2 s has that phase lag; a candidate with an error of 10 % of the amplitude everywhere has a
+// normalised error of 0.1 / (1 / sqrt 2) = 0.141.
+TEST(CompareStorms, RecoversLagAndNormalisedError) {
+  const fs::path d = tempDir("compare");
+  auto write = [&](const fs::path& file, double lag, double offset) {
+    storm::StormHeader h;
+    h.x = {0.025, 0.075, 0.125};
+    h.z = {0.025, 0.075};
+    h.trunkLength = 1.0;
+    h.samples = {1, 1, 0, 1, 1, 1};
+    storm::StormWriter w(file.string(), h);
+    storm::StormRecord r;
+    r.u.assign(6, 0.0);
+    r.w.assign(6, 0.0);
+    r.alpha.assign(6, 1.0);
+    r.eta.assign(3, 0.0);
+    for (int k = 0; k <= 400; ++k) {
+      r.time = 0.01 * k;
+      r.p.assign(6, 0.0);
+      for (int v = 0; v < 6; ++v) r.p[static_cast<std::size_t>(v)] = 1000.0 * std::sin(2.0 * std::numbers::pi * (r.time - lag) / 2.0) + offset;
+      w.append(r);
+    }
+    w.finish();
+  };
+  write(d / "ref.nc", 0.0, 0.0);
+  write(d / "late.nc", 0.2, 0.0);
+  write(d / "offset.nc", 0.0, 100.0);
+  const proxy::Comparison late = proxy::compareStorms(d / "ref.nc", d / "late.nc");
+  EXPECT_NEAR(late.phaseLag, 0.2, 0.005); // parabolic refinement of a 0.01 s record spacing
+  EXPECT_EQ(late.voxels, 5u);
+  const proxy::Comparison offset = proxy::compareStorms(d / "ref.nc", d / "offset.nc");
+  EXPECT_NEAR(offset.rmse, 100.0, 1e-3); // float storage of p
+  EXPECT_NEAR(offset.normalisedError, 0.1 * std::sqrt(2.0), 2e-3);
+  EXPECT_NEAR(offset.phaseLag, 0.0, 1e-9);
+  const proxy::Comparison self = proxy::compareStorms(d / "ref.nc", d / "ref.nc");
+  EXPECT_EQ(self.rmse, 0.0);
+  EXPECT_NEAR(self.correlation, 1.0, 1e-12);
+  fs::remove_all(d);
+}
+
+// combine: the records and grid of the sea state with the variability of the 3D run, unchanged.
+TEST(CombineStorms, TakesRecordsFromOneAndVariabilityFromTheOther) {
+  const fs::path d = tempDir("combine");
+  auto header = [](double x0) {
+    storm::StormHeader h;
+    h.x = {x0, x0 + 0.05, x0 + 0.1};
+    h.z = {-0.1, -0.05};
+    h.trunkLength = 44.5;
+    h.samples = {1, 1, 1, 1, 0, 1};
+    return h;
+  };
+  auto write = [](const fs::path& file, storm::StormHeader h, double scale) {
+    storm::StormWriter w(file.string(), h);
+    storm::StormRecord r;
+    r.u.assign(6, 0.5);
+    r.w.assign(6, -0.5);
+    r.alpha.assign(6, 1.0);
+    r.eta.assign(3, 0.1);
+    for (int k = 0; k < 3; ++k) {
+      r.time = 0.05 * k;
+      r.p.assign(6, scale * (k + 1));
+      w.append(r);
+    }
+    w.finish();
+  };
+  write(d / "sea.nc", header(10.0), 1000.0);
+  storm::StormHeader h3 = header(20.0);
+  h3.variability.present = true;
+  h3.variability.classes[0] = {1.7, 0.08, 0.01, 5000};
+  h3.variability.classes[3] = {1.2, 0.05, 0.02, 4000};
+  h3.variability.probabilityAbove = {{0.45, 0.55}};
+  h3.variability.normalisationPressure = 32000.0;
+  h3.variability.normalisationElevation = 3.25;
+  h3.variability.source = "3D regular waves";
+  write(d / "3d.nc", h3, 7.0);
+  proxy::combineStorms(d / "sea.nc", d / "3d.nc", d / "storm.nc", storm::Provenance(), storm::StormWriteOptions());
+  const storm::StormReader r((d / "storm.nc").string());
+  EXPECT_EQ(r.header().x[0], 10.0);
+  ASSERT_EQ(r.times().size(), 3u);
+  storm::StormRecord rec;
+  r.read(2, rec);
+  EXPECT_FLOAT_EQ(static_cast<float>(rec.p[0]), 3000.0f);
+  const storm::Variability& v = r.header().variability;
+  ASSERT_TRUE(v.present);
+  EXPECT_EQ(v.classes[0].shape, 1.7);
+  EXPECT_EQ(v.classes[3].samples, 4000);
+  EXPECT_EQ(v.probabilityAbove[1], 0.55);
+  EXPECT_EQ(v.normalisationPressure, 32000.0);
+  EXPECT_NE(v.source.find("3D regular waves"), std::string::npos);
+  // A variability file without a model is refused.
+  EXPECT_THROW(proxy::combineStorms(d / "sea.nc", d / "sea.nc", d / "bad.nc", storm::Provenance(),
+                                    storm::StormWriteOptions()),
+               core::InputError);
+  fs::remove_all(d);
+}
