@@ -7,6 +7,7 @@
 // displacement is zero, and against a copy moved by 0.5 m along y every unit moved 0.5 Dn.
 
 #include "app/PackAnalysis.hpp"
+#include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "simulation/SceneBuilder.hpp"
 
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 using namespace armour;
 
@@ -76,4 +78,29 @@ TEST(PackAnalysis, TowerOfCubesHasKnownContactsAndOrder) {
   EXPECT_NEAR(shifted.displacement->maxDn, 0.5, 1e-12);
   EXPECT_EQ(shifted.displacement->movedCounts[0], 3u); // all moved more than 0.2 Dn
   EXPECT_EQ(shifted.displacement->movedCounts[1], 0u); // none more than 0.5 Dn (exactly 0.5)
+}
+
+TEST(PackAnalysis, StateFilesAreReadOrRefusedWithTheLine) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "armour-state-test.csv";
+  std::ofstream(file) << "body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz\n0,c0,1,2,3,1,0,0,0,0,0,0\n1,c1,1,2,nan,1,0,0,0,0,0,0\n";
+  try {
+    (void)app::readPoses(file);
+    FAIL() << "a NaN position accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("armour-state-test.csv:3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("column z"), std::string::npos) << e.what();
+  }
+  std::ofstream(file) << "name,x,y,z\nc0,1,2,3\n";
+  try {
+    (void)app::readPoses(file);
+    FAIL() << "a file without quaternions accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("column 'qw' missing"), std::string::npos) << e.what();
+  }
+  std::ofstream(file) << "body,name,x,y,z,qw,qx,qy,qz\n0,c0,1,2,3,0,0,0,2\n";
+  const app::PoseMap poses = app::readPoses(file);
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_EQ(poses.at("c0").position, Eigen::Vector3d(1, 2, 3));
+  EXPECT_NEAR(poses.at("c0").orientation.z(), 1.0, 1e-15); // normalised
+  std::filesystem::remove(file);
 }
