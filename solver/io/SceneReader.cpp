@@ -723,7 +723,7 @@ const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix",
                              "orientation", "crane", "settle", "rocks", "clearance", "seed", "output"};
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
-const KeyList kPlacementOrientationKeys{"mode", "euler_deg", "max_angle_deg", "tries"};
+const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries"};
 const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
 const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
 const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
@@ -787,6 +787,7 @@ void readPlacement(const Block& top, Scene& scene) {
                 kPlacementOrientationKeys);
   placement::OrientationSettings& os = out.orientation;
   os.mode = static_cast<placement::OrientationMode>(o.choice("mode", {"perturbed", "tilted", "random"}, 0));
+  os.slopeFrame = o.choice("frame", {"world", "slope"}, 0) == 1;
   if (o.has("euler_deg")) {
     const auto e = o.numbers("euler_deg", 3, {"deg", kAnyNumber, "[0, 0, 0]"});
     os.phiDeg = e[0];

@@ -52,6 +52,10 @@ struct GridSettings {
 
 struct OrientationSettings {
   OrientationMode mode = OrientationMode::Perturbed;
+  /// The frame the base orientation and the perturbation are given in: false = the world (z up),
+  /// true = the slope face (z along its outward normal, x up the face, y along the trunk), so a
+  /// unit can lie on the face and be turned about its normal.
+  bool slopeFrame = false;
   double phiDeg = 0.0, thetaDeg = 0.0, psiDeg = 0.0; ///< base orientation, Tait-Bryan x-y'-z'' (unit: deg)
   double maxAngleDeg = 20.0;        ///< perturbation bound (unit: deg); seed 000: +-20 deg about the vertical
   int tries = 1;                    ///< orientations tried per unit, the one that comes to rest lowest kept (unit: -)

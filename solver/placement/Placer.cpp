@@ -35,7 +35,8 @@ std::mt19937_64 stream(std::uint64_t seed, std::uint64_t k) {
 
 double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-/// The orientation of unit i (natural shape frame -> world), from its own stream.
+/// The orientation of unit i (natural shape frame -> the frame of the settings: the world, or the
+/// slope face's), from its own stream.
 Quat unitOrientation(const OrientationSettings& o, std::mt19937_64& rng) {
   if (o.mode == OrientationMode::Random) return uniformRotation(rng);
   const Quat base = io::quaternionFromTaitBryan(o.phiDeg * kDeg, o.thetaDeg * kDeg, o.psiDeg * kDeg);
@@ -345,7 +346,9 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     Quat bestNatural = Quat::Identity();
     bool found = false;
     for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
-      const Quat natural = unitOrientation(ps.orientation, rng);
+      // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
+      const Quat frame = ps.orientation.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
+      const Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
       Placed u;
       u.shape = &unitModel;
       u.scale = unitScale;

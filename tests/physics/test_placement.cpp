@@ -155,6 +155,22 @@ TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
   refuses(std::string(s).replace(s.find("packing_density"), 15, "packing_densty"), "did you mean 'packing_density'");
   refuses(std::string(s).replace(s.find("mode: perturbed"), 15, "mode: random"), "remove euler_deg");
   refuses(std::string(s).replace(s.find("material: concrete\n  volume"), 18, "material: steel"), "no such material");
+  refuses(std::string(s).replace(s.find("mode: perturbed"), 15, "mode: perturbed, frame: face"), "expected one of world, slope");
+}
+
+TEST(Placement, SlopeFrameOrientationsLieOnTheFace) {
+  // frame: slope with the base orientation the identity and no perturbation: every unit's natural
+  // z axis is the face normal (-sin a, 0, cos a), to round-off.
+  std::string s = antiferScene("grid");
+  s.replace(s.find("orientation: {mode: perturbed, euler_deg: [0, -26.565, 0], max_angle_deg: 10}"), 77,
+            "orientation: {mode: perturbed, frame: slope, max_angle_deg: 0}");
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  const placement::PlacementResult r = placement::place(parse(s), {}, options);
+  const double a = std::atan(0.5);
+  for (const auto& u : r.units)
+    EXPECT_NEAR((u.releaseOrientation * Eigen::Vector3d::UnitZ() - Eigen::Vector3d(-std::sin(a), 0.0, std::cos(a))).norm(),
+                0.0, 1e-12) << u.name;
 }
 
 TEST(Placement, NoUnitStartsOverlapping) {
