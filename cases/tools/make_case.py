@@ -18,6 +18,7 @@ import json
 import math
 import os
 import shutil
+import subprocess
 import sys
 
 import numpy as np
@@ -117,12 +118,17 @@ def vec(v):
 
 
 class Case:
-    def __init__(self, params, src, out, armour_exe, olaflow):
+    def __init__(self, params, src, out, armour_exe, olaflow, sample=None, foam_proxy=None,
+                 sampler_library=None):
         self.p = params
         self.src = src
         self.out = out
         self.armour = armour_exe
         self.olaflow = olaflow
+        self.sample = sample                    # None, "foam-proxy", "sampler" or "both"
+        self.foam_proxy = foam_proxy            # foam-proxy executable (writes the dictionaries)
+        self.sampler_library = sampler_library  # libarmourSampler.so (sampler, both)
+        self.sampling = None
 
     # ------------------------------------------------------------------ helpers
     def write(self, rel, body, cls="dictionary", obj=None):
@@ -611,6 +617,11 @@ regions
         rho             rho;
         CofR            {vec(units[i])};
     }}""")
+        include = ""
+        if self.sample:
+            self.sampling = self.sampling_grid()
+            self.write_sampling_functions()
+            include = "\n    #include \"armourFunctions\""
         self.write("system/controlDict", f"""
 application     interFoam;
 startFrom       latestTime;
@@ -622,7 +633,7 @@ writeControl    adjustableRunTime;
 writeInterval   {tm.get('write_interval', 1.0)};
 purgeWrite      0;
 writeFormat     binary;
-writePrecision  8;
+writePrecision  {10 if self.sample else 8};
 writeCompression off;
 timeFormat      general;
 timePrecision   8;
@@ -633,7 +644,7 @@ maxAlphaCo      {tm.get('maxAlphaCo', 0.5)};
 maxDeltaT       {tm.get('maxDeltaT', 0.05)};
 
 functions
-{{{''.join(fos)}
+{{{''.join(fos)}{include}
 }}
 """)
         self.write("system/fvSchemes", """
@@ -678,6 +689,63 @@ numberOfSubdomains {npd};
 method          {method};
 coeffs          {{ n ({npd} 1 1); }}
 """)
+
+    # ------------------------------------------------------------------ storm-file sampling
+    def sampling_grid(self):
+        """Storm-file voxel grid of foam-proxy/armourSampler, chosen from the case.
+
+        Columns cover the structure from 2 m offshore of the core toe to its back toe (or the
+        crown wall, or the tank end), rows the whole tank height: the solver's units sit on the
+        seaward slope and the crest. Voxels are three mesh cells wide and high: an odd multiple
+        puts every voxel centre on a cell centre (the first face is on a mesh line), so the 2D
+        cloud set reads the cell value exactly where the storm file places it, and each 3D voxel
+        averages several unit faces. The trunk section is the whole tank width (3D: the symmetry
+        sides bound it); 2D runs have one cell across, y in [0, width].
+        """
+        p, t, m = self.p, self.p["tank"], self.p["mesh"]
+        core = p["structure"]["core"]
+        dx, dz = 3.0 * m["dx"], 3.0 * m["dz"]
+        back_toe = core["toe_x"] + core["crest_z"] * (core["front_cot"] + core["back_cot"]) + core["crest_width"]
+        crown = p["structure"].get("crownwall")
+        if crown:
+            back_toe = max(back_toe, crown["x"] + crown["width"])
+        x_min = max(0.0, math.floor((core["toe_x"] - 2.0) / dx) * dx)
+        x_max = min(t["length"], back_toe + dx)
+        nx = max(1, int(math.ceil((x_max - x_min) / dx - 1e-9)))
+        nz = max(1, int(t["height"] / dz + 1e-9))
+        return {"x_min": x_min, "z_min": 0.0, "dx": dx, "dz": dz, "nx": nx, "nz": nz,
+                "trunk_origin": 0.0, "trunk_length": t["width"], "swl": t["depth"], "rho": RHO_WATER,
+                "g": G, "two_d": p["dimension"] == 2, "patches": ["unit_.*"],
+                "interval": p["time"].get("sample_interval", 0.05), "mode": self.sample}
+
+    @staticmethod
+    def grid_args(g):
+        """foam-proxy options of the grid (the same for `dict` and `sample`)."""
+        args = ["--x-min", repr(g["x_min"]), "--z-min", repr(g["z_min"]), "--dx", repr(g["dx"]),
+                "--dz", repr(g["dz"]), "--nx", str(g["nx"]), "--nz", str(g["nz"]),
+                "--trunk-origin", repr(g["trunk_origin"]), "--trunk-length", repr(g["trunk_length"]),
+                "--swl", repr(g["swl"]), "--rho", repr(g["rho"]), "--g", repr(g["g"])]
+        return args + (["--2d"] if g["two_d"] else [])
+
+    def write_sampling_functions(self):
+        """system/armourFunctions from `foam-proxy dict` (included by controlDict's functions)."""
+        if not self.foam_proxy or not os.path.isfile(self.foam_proxy):
+            raise ParamError(f"--sample {self.sample}: foam-proxy executable {self.foam_proxy!r} not found; "
+                             "build the foam-proxy target and pass --foam-proxy PATH")
+        kind = {"foam-proxy": "stock", "sampler": "sampler", "both": "both"}[self.sample]
+        cmd = [self.foam_proxy, "dict"] + self.grid_args(self.sampling) + [
+            "--interval", repr(self.sampling["interval"]), "--function-objects", kind,
+            "--patches"] + self.sampling["patches"]
+        if kind != "stock":
+            if not self.sampler_library or not os.path.isfile(self.sampler_library):
+                raise ParamError(f"--sample {self.sample}: armourSampler library {self.sampler_library!r} "
+                                 "not found; build the armourSampler target (needs the OpenFOAM SDK) "
+                                 "and pass --sampler-library PATH, or use --sample foam-proxy")
+            cmd += ["--sampler-library", os.path.abspath(self.sampler_library)]
+        res = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        if res.returncode != 0:
+            raise RuntimeError(f"{' '.join(cmd)} failed ({res.returncode}): {res.stdout.strip()}")
+        self.write_plain("system/armourFunctions", res.stdout)
 
     # ------------------------------------------------------------------ olaFlow
     def olaflow_dicts(self, layers):
@@ -778,6 +846,7 @@ coeffs          {{ n ({npd} 1 1); }}
             "gauges": self.gauges, "units": [list(map(float, c)) for c in units],
             "porous_zones": [{"zone": n, "d": d, "f": f} for n, d, f in self.porous],
             "swl": self.p["tank"]["depth"], "rho_water": RHO_WATER, "g": G,
+            "sampling": self.sampling,
         }
         self.write_plain("case.json", json.dumps(info, indent=1) + "\n")
         env = [f"ARMOUR_REPO={REPO}", f"CASE_NAME={self.p.get('name', 'case')}",
@@ -815,13 +884,22 @@ def main(argv=None):
     ap.add_argument("--olaflow", action="store_true", help="also write olaflow/constant/{waveDict,porosityDict}")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="override a parameter, e.g. --set wave.height=2.5")
+    ap.add_argument("--sample", choices=("foam-proxy", "sampler", "both"),
+                    help="sample the run for the solver's storm file: the stock surfaces/sets function "
+                         "objects read by `foam-proxy sample`, the armourSampler function object, or both "
+                         "(system/armourFunctions from `foam-proxy dict`; grid in case.json 'sampling')")
+    ap.add_argument("--foam-proxy", default=os.environ.get("ARMOUR_FOAM_PROXY", os.path.join(REPO, "build", "bin", "foam-proxy")),
+                    help="foam-proxy executable (with --sample)")
+    ap.add_argument("--sampler-library", default=os.environ.get("ARMOUR_SAMPLER_LIB", os.path.join(REPO, "build", "lib", "libarmourSampler.so")),
+                    help="libarmourSampler.so (with --sample sampler|both)")
     a = ap.parse_args(argv)
     try:
         with open(a.params) as fh:
             params = json.load(fh)
         for s in a.set:
             set_key(params, s)
-        info = Case(copy.deepcopy(params), a.params, os.path.abspath(a.output), a.armour, a.olaflow).generate()
+        info = Case(copy.deepcopy(params), a.params, os.path.abspath(a.output), a.armour, a.olaflow,
+                    a.sample, a.foam_proxy, a.sampler_library).generate()
     except KeyError as e:
         print(f"make_case: error: {a.params}: missing key {e}", file=sys.stderr)
         return 2
