@@ -116,6 +116,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
 
   PackReport r;
   r.axis = settings.axis;
+  r.rockingAngle = settings.displacement.rockingAngle;
   std::vector<Eigen::Vector3d> positions;
   std::vector<Eigen::Quaterniond> orientations;
   std::vector<double> dn;
@@ -254,8 +255,7 @@ std::string packText(const PackReport& r) {
     t += fmt::format("middle half (003)   D {:.4g} m, D_z {:.4g} m, D'_z {:.4g} m\n", d.D, d.x.mean, d.x.meanAbsolute);
     for (std::size_t k = 0; k < d.thresholdsDn.size(); ++k)
       t += fmt::format("moved > {:.2g} Dn      {} units\n", d.thresholdsDn[k], d.movedCounts[k]);
-    t += fmt::format("rocking             {} units (rotation > {:.3g} deg)\n", d.rockingCount,
-                     d.units.empty() ? 0.0 : 5.0);
+    t += fmt::format("rocking             {} units (rotation > {:.3g} deg)\n", d.rockingCount, r.rockingAngle * kDeg);
   }
   return t;
 }

@@ -66,6 +66,7 @@ struct PackReport {
   double porosity = 0.0;            ///< 1 - N V / (A t) over the hull (unit: -); 0 without a thickness
   std::optional<analysis::PackDisplacement> displacement;
   std::string axis;
+  double rockingAngle = 0.0;        ///< the rocking threshold used (unit: rad)
 };
 
 /// Analyse `scene` at its bodies' poses (optionally overridden by `state`), with displacements

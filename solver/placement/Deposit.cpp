@@ -37,6 +37,13 @@ bool touches(const Placed& a, const Placed& b, double clearance) {
   return samplesTouch(a, b, clearance) || samplesTouch(b, a, clearance);
 }
 
+/// The lowest extent of u along n: min over its mesh vertices of (R v) . n (m, relative to its centroid).
+double lowestAlong(const Placed& u, const Vec3& n) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : u.shape->mesh.vertices) lowest = std::min(lowest, (u.R * (u.scale * v)).dot(n));
+  return lowest;
+}
+
 } // namespace
 
 Quat uniformRotation(std::mt19937_64& rng) {
@@ -94,9 +101,7 @@ bool Deposit::clearWalls(Placed& u, double clearance) const {
     bool moved = false;
     for (const Plane& pl : planes_) {
       if (std::abs(pl.normal.z()) > 1e-9) continue;
-      double lowest = std::numeric_limits<double>::infinity();
-      for (const Vec3& v : u.shape->mesh.vertices) lowest = std::min(lowest, (u.R * (u.scale * v)).dot(pl.normal));
-      const double gap = (u.x - pl.point).dot(pl.normal) + lowest;
+      const double gap = (u.x - pl.point).dot(pl.normal) + lowestAlong(u, pl.normal);
       if (gap < clearance) {
         u.x += (clearance - gap) * pl.normal;
         moved = true;
@@ -107,9 +112,7 @@ bool Deposit::clearWalls(Placed& u, double clearance) const {
   // Still touching a wall after pushing off both sides: it does not fit.
   for (const Plane& pl : planes_) {
     if (std::abs(pl.normal.z()) > 1e-9) continue;
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const Vec3& v : u.shape->mesh.vertices) lowest = std::min(lowest, (u.R * (u.scale * v)).dot(pl.normal));
-    if ((u.x - pl.point).dot(pl.normal) + lowest < clearance * (1.0 - 1e-9)) return false;
+    if ((u.x - pl.point).dot(pl.normal) + lowestAlong(u, pl.normal) < clearance * (1.0 - 1e-9)) return false;
   }
   return true;
 }
@@ -119,8 +122,7 @@ double Deposit::staticFloor(const Placed& u, double clearance) const {
   // Upward planes: z n_z >= clearance + p.n - n_xy . x_xy - min over vertices of (R v) . n.
   for (const Plane& pl : planes_) {
     if (pl.normal.z() <= 1e-9) continue;
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const Vec3& v : u.shape->mesh.vertices) lowest = std::min(lowest, (u.R * (u.scale * v)).dot(pl.normal));
+    const double lowest = lowestAlong(u, pl.normal);
     const double planar = pl.normal.x() * (u.x.x() - pl.point.x()) + pl.normal.y() * (u.x.y() - pl.point.y());
     floorZ = std::max(floorZ, pl.point.z() + (clearance - planar - lowest) / pl.normal.z());
   }
