@@ -4,6 +4,7 @@
 #include "app/AnalyseCommands.hpp"
 #include "app/CommandContext.hpp"
 #include "app/PlaceCommands.hpp"
+#include "app/ReportCommands.hpp"
 #include "app/RunCommands.hpp"
 #include "app/ShapeCommands.hpp"
 #include "app/StormCommands.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   armour::app::addStormCommands(app, global);
   armour::app::addPlaceCommands(app, global);
   armour::app::addAnalyseCommands(app, global);
+  armour::app::addReportCommands(app, global);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {
