@@ -56,19 +56,20 @@ std::vector<double> VoxelGrid::zCentres() const {
 }
 
 int VoxelGrid::column(double x) const {
-  const double s = std::floor((x - settings_.xMin) / settings_.dx);
+  const double s = std::floor((x - settings_.xMin) / settings_.dx + kBoundarySnap);
   if (!(s >= 0.0 && s < settings_.nx)) return -1; // also rejects NaN
   return static_cast<int>(s);
 }
 
 int VoxelGrid::row(double z) const {
-  const double s = std::floor((z - settings_.zMin) / settings_.dz);
+  const double s = std::floor((z - settings_.zMin) / settings_.dz + kBoundarySnap);
   if (!(s >= 0.0 && s < settings_.nz)) return -1;
   return static_cast<int>(s);
 }
 
 bool VoxelGrid::inTrunk(double y) const {
-  return y >= settings_.trunkOrigin && y <= settings_.trunkOrigin + settings_.trunkLength;
+  const double tolerance = kBoundarySnap * settings_.trunkLength;
+  return y >= settings_.trunkOrigin - tolerance && y <= settings_.trunkOrigin + settings_.trunkLength + tolerance;
 }
 
 long VoxelGrid::voxel(double x, double y, double z) const {

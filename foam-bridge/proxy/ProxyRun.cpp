@@ -64,19 +64,21 @@ SampleSummary sampleSurfaces(const SampleOptions& o) {
   std::vector<double> sums, levels;
   storm::StormRecord record;
   for (const SampleTime& t : times) {
-    const PointSet eta = readPointSet(t.folder, o.etaSet, names);
+    const PointSet eta = readPointSet(t.folder, o.etaSet, names, {o.alphaField});
     const std::vector<double>& etaAlpha = eta.field(o.alphaField, 1);
     PointSet centres;
     Surface units, cells;
     const Surface* uSource = nullptr;
     if (o.twoD) {
-      centres = readPointSet(t.folder, o.centresSet, names);
+      // The centres' own function object (foam-proxy dict), or the sets one (earlier dictionaries).
+      const fs::path own = o.caseDir / "postProcessing" / o.centresFunction / t.folder.filename();
+      centres = readPointSet(fs::is_directory(own) ? own : t.folder, o.centresSet, names);
     } else {
       const fs::path folder = surfacesFolder / t.folder.filename();
-      units = readSurface(surfaceFile(folder, o.unitsSurface));
+      units = readSurfaceIn(folder, o.unitsSurface, names);
       uSource = &units;
       if (!o.cellsSurface.empty()) {
-        cells = readSurface(surfaceFile(folder, o.cellsSurface));
+        cells = readSurfaceIn(folder, o.cellsSurface, names);
         requireSameFaces(units, cells);
         uSource = &cells;
       }
@@ -131,19 +133,24 @@ SampleSummary sampleSurfaces(const SampleOptions& o) {
       const std::vector<double>& p = units.field(o.pField, 1);
       const std::vector<double>& alpha = units.field(o.alphaField, 1);
       const std::vector<double>& u = uSource->field(o.uField, 3);
-      double force[3] = {0.0, 0.0, 0.0};
       for (std::size_t i = 0; i < units.faces(); ++i) {
         values.p[i] = p[i];
         values.u[i] = u[3 * i];
         values.v[i] = u[3 * i + 1];
         values.w[i] = u[3 * i + 2];
         values.alpha[i] = alpha[i];
-        const double pg = p[i] - o.sampler.pressureReference;
-        force[0] += pg * units.areaX[i];
-        force[1] += pg * units.areaY[i];
-        force[2] += pg * units.areaZ[i];
       }
-      summary.pressureForce.insert(summary.pressureForce.end(), force, force + 3);
+      if (units.hasGeometry()) {
+        // The force of the face pressures needs the face areas: vtk/vtp output only (raw has none).
+        double force[3] = {0.0, 0.0, 0.0};
+        for (std::size_t i = 0; i < units.faces(); ++i) {
+          const double pg = p[i] - o.sampler.pressureReference;
+          force[0] += pg * units.areaX[i];
+          force[1] += pg * units.areaY[i];
+          force[2] += pg * units.areaZ[i];
+        }
+        summary.pressureForce.insert(summary.pressureForce.end(), force, force + 3);
+      }
     }
     stats.sums(values, sums);
     stats.initColumnLevels(levels);
@@ -172,6 +179,10 @@ std::string functionDictionaries(const SampleOptions& o, const std::vector<std::
   if (which != "both" && which != "sampler" && which != "stock") {
     core::failInput("--function-objects", "'{}': choose both, sampler (armourSampler) or stock (surfaces and sets)", which);
   }
+  if (o.surfaceFormat != "raw" && o.surfaceFormat != "vtk") {
+    core::failInput("--surface-format", "'{}': choose raw (text, the case's writePrecision digits: double) or vtk "
+                                        "(binary legacy VTK: float, face areas for --forces-csv)", o.surfaceFormat);
+  }
   const bool sampler = which != "stock", stock = which != "sampler";
   const bridge::VoxelStatistics stats = bridgeCall("foam-proxy dict", [&] { return bridge::VoxelStatistics(o.sampler); });
   const bridge::VoxelGridSettings& g = o.sampler.grid;
@@ -193,7 +204,9 @@ std::string functionDictionaries(const SampleOptions& o, const std::vector<std::
       "// Function objects of armour's foam-bridge, written by: foam-proxy dict (docs/foam-bridge.md).\n"
       "// Put them in the `functions` of system/controlDict. Either armourSampler (compiled) or the stock\n"
       "// surfaces and sets function objects (read by foam-proxy sample) is enough; both give the same storm file.\n"
-      "// Set writePrecision 10 (or more) in controlDict so that the sets output keeps p to 1e-6.\n\n");
+      "// Set writePrecision 15 in controlDict: the sets output and the raw surfaces output are text with\n"
+      "// that many digits (15: the offline storm file matches the online one to round-off; 8 would\n"
+      "// keep p to ~1e-8 relative and eta to ~1e-7 m).\n\n");
   if (sampler) d += fmt::format(
       "    armourSampler\n    {{\n        type            armourSampler;\n        libs            (\"{}\");\n{}"
       "        twoD            {};\n        patches         ({});\n"
@@ -210,32 +223,46 @@ std::string functionDictionaries(const SampleOptions& o, const std::vector<std::
   if (!o.twoD) {
     d += fmt::format(
         "    {}\n    {{\n        type            surfaces;\n        libs            (\"libsampling.so\");\n{}"
-        "        surfaceFormat   vtk;\n        formatOptions   {{ vtk {{ format binary; legacy true; }} }}\n"
+        "{}"
         "        fields          ({} {} {});\n        interpolationScheme cell;\n        surfaces\n        (\n"
         "            {} {{ type patch; patches ({}); interpolate false; triangulate false; }}\n"
         "            // U of the wall-adjacent cells (U on a no-slip wall is zero)\n"
         "            {} {{ type patchInternalField; patches ({}); offsetMode normal; distance 1e-6;\n"
         "                        interpolate false; triangulate false; }}\n        );\n    }}\n\n",
-        o.surfacesFunction, control, o.pField, o.alphaField, o.uField, o.unitsSurface, patchList, o.cellsSurface,
+        o.surfacesFunction, control,
+        o.surfaceFormat == "raw"
+            ? "        // raw: face centres and values as text, writePrecision digits (double; vtk stores float)\n"
+              "        surfaceFormat   raw;\n"
+            : "        // vtk: binary legacy VTK, float values; the face areas give foam-proxy's --forces-csv\n"
+              "        surfaceFormat   vtk;\n        formatOptions   { vtk { format binary; legacy true; } }\n",
+        o.pField, o.alphaField, o.uField, o.unitsSurface, patchList, o.cellsSurface,
         patchList);
   }
   d += fmt::format(
       "    {}\n    {{\n        type            sets;\n        libs            (\"libsampling.so\");\n{}"
-      "        setFormat       raw;\n        interpolationScheme cell;\n        fields          ({} {} {});\n"
+      "        setFormat       raw;\n        interpolationScheme cell;\n        fields          ({});\n"
       "        sets\n        (\n"
       "            // eta: the cell centres within etaHalfWidth of y = etaPlaneY\n"
       "            {} {{ type cellCentre; axis xyz; bounds ({:.12g} {:.12g} -1e6) ({:.12g} {:.12g} 1e6); }}\n",
-      o.setsFunction, control, o.alphaField, o.pField, o.uField, o.etaSet, x0, y0, x1, y1);
+      o.setsFunction, control, o.alphaField, o.etaSet, x0, y0, x1, y1);
+  d += "        );\n    }\n";
   if (o.twoD) {
-    d += fmt::format("            // 2D runs: the cell values at the voxel centres\n"
-                     "            {} {{ type cloud; axis xyz; points\n            (\n", o.centresSet);
+    // The voxel centres in a function object of their own: a sets function object has one fields
+    // list for all its sets, and eta needs alpha only (with p and U too, the 2D smoke case wrote
+    // 253 MB of eta text at 15 digits).
+    d += fmt::format(
+        "\n    {}\n    {{\n        type            sets;\n        libs            (\"libsampling.so\");\n{}"
+        "        setFormat       raw;\n        interpolationScheme cell;\n        fields          ({} {} {});\n"
+        "        sets\n        (\n"
+        "            // 2D runs: the cell values at the voxel centres\n"
+        "            {} {{ type cloud; axis xyz; points\n            (\n",
+        o.centresFunction, control, o.alphaField, o.pField, o.uField, o.centresSet);
     for (int iz = 0; iz < g.nz; ++iz)
       for (int ix = 0; ix < g.nx; ++ix)
         d += fmt::format("                ({:.12g} {:.12g} {:.12g})\n", stats.grid().xCentre(ix), stats.etaPlaneY(),
                          stats.grid().zCentre(iz));
-    d += "            ); }\n";
+    d += "            ); }\n        );\n    }\n";
   }
-  d += "        );\n    }\n";
   return d;
 }
 

@@ -24,8 +24,10 @@ struct SampleOptions {
   std::string surfacesFunction = "armourSurfaces"; ///< name of the surfaces function object (3D)
   std::string unitsSurface = "units";       ///< patch surface: p and alpha on the unit faces
   std::string cellsSurface = "unitCells";   ///< patchInternalField surface: U of the wall cells ("" = U of `units`)
+  std::string surfaceFormat = "raw";        ///< surfaces output that `dict` asks for: raw (text, double) or vtk (binary, float)
   std::string setsFunction = "armourSets";  ///< name of the sets function object
   std::string etaSet = "etaCells";          ///< cellCentre set of the eta band: alpha at the cell centres
+  std::string centresFunction = "armourCentres"; ///< sets function object of the voxel centres (2D runs; else in setsFunction)
   std::string centresSet = "voxelCentres";  ///< cloud set of the voxel centres: p, U, alpha (2D runs)
   std::string pField = "p";
   std::string uField = "U";
@@ -45,7 +47,7 @@ struct SampleSummary {
   std::size_t voxelsWithData = 0;
   bridge::DeviationHistogram histogram;
   storm::Variability variability;
-  std::vector<double> pressureForce;  ///< 3 per record: sum of p S_f over the unit faces (unit: N)
+  std::vector<double> pressureForce;  ///< 3 per record: sum of p S_f over the unit faces (unit: N); empty from raw surfaces (no areas)
   std::vector<double> times;          ///< unit: s
 };
 
@@ -56,7 +58,7 @@ std::string functionDictionaries(const SampleOptions& options, const std::vector
                                  double interval, const std::string& samplerLibrary,
                                  const std::string& which = "both");
 
-/// Read postProcessing/<surfacesFunction>/<time>/*.vtk (3D) and postProcessing/<setsFunction>/<time>/*.xy
+/// Read postProcessing/<surfacesFunction>/<time>/*.raw or *.vtk (3D) and postProcessing/<setsFunction>/<time>/*.xy
 /// of the case and write the storm file.
 SampleSummary sampleSurfaces(const SampleOptions& options);
 

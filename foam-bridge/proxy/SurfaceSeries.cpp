@@ -17,8 +17,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
 #include <fstream>
-#include <sstream>
 
 namespace armour::proxy {
 
@@ -123,6 +125,56 @@ void faceGeometry(Surface& s) {
   }
 }
 
+/// The numbers of a whitespace-separated text file (the `sets` raw output, the `surfaces` raw
+/// output): '#' lines are comments, every other non-empty line a row of numbers. Parsed with
+/// std::from_chars over the whole file in memory (an istringstream per line took 5 times the CPU
+/// time on the smoke cases' sets output, docs/benchmarks.md).
+struct TextTable {
+  std::vector<std::string> comments;
+  std::size_t columns = 0;
+  std::vector<double> values; ///< row-major
+  std::size_t rows() const { return columns == 0 ? 0 : values.size() / columns; }
+  double at(std::size_t r, std::size_t c) const { return values[r * columns + c]; }
+};
+
+TextTable readTextTable(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) core::failInput(file.string(), "cannot open the file");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  TextTable t;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  std::size_t line = 0;
+  while (p < end) {
+    ++line;
+    const char* eol = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+    if (!eol) eol = end;
+    const char* q = p;
+    while (q < eol && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
+    if (q < eol && *q == '#') {
+      t.comments.emplace_back(q, eol);
+    } else if (q < eol) {
+      std::size_t n = 0;
+      while (q < eol) {
+        double v = 0.0;
+        const auto [next, ec] = std::from_chars(q, eol, v);
+        if (ec != std::errc()) {
+          core::failInput(file.string(), "line {}: '{}' is not a number", line,
+                          std::string(q, std::min<const char*>(eol, q + 20)));
+        }
+        t.values.push_back(v);
+        ++n;
+        q = next;
+        while (q < eol && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
+      }
+      if (t.columns == 0) t.columns = n;
+      else if (n != t.columns) core::failInput(file.string(), "line {} has {} columns; expected {}", line, n, t.columns);
+    }
+    p = eol + 1;
+  }
+  return t;
+}
+
 } // namespace
 
 Surface readSurface(const fs::path& file) {
@@ -196,7 +248,8 @@ const std::vector<double>& PointSet::field(const std::string& name, int expected
   return it->second;
 }
 
-PointSet readPointSet(const fs::path& timeFolder, const std::string& set, const std::vector<std::string>& fieldNames) {
+PointSet readPointSet(const fs::path& timeFolder, const std::string& set, const std::vector<std::string>& fieldNames,
+                      const std::vector<std::string>& needed) {
   PointSet out;
   out.source = (timeFolder / set).string();
   const std::string prefix = set + "_";
@@ -238,49 +291,123 @@ PointSet readPointSet(const fs::path& timeFolder, const std::string& set, const 
       names.push_back(joined);
       i += take;
     }
-    std::ifstream in(file);
-    std::string line;
-    std::vector<std::vector<double>> rows;
-    while (std::getline(in, line)) {
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream ls(line);
-      std::vector<double> row;
-      double v;
-      while (ls >> v) row.push_back(v);
-      if (!row.empty()) rows.push_back(std::move(row));
-    }
-    const std::size_t cols = rows.empty() ? 3 + names.size() : rows.front().size();
+    if (!needed.empty() && std::none_of(names.begin(), names.end(), [&needed](const std::string& n) {
+          return std::find(needed.begin(), needed.end(), n) != needed.end();
+        }))
+      continue;
+    const TextTable table = readTextTable(file);
+    const std::size_t cols = table.rows() == 0 ? 3 + names.size() : table.columns;
     if (cols < 4 || (cols - 3) % names.size() != 0) {
       core::failInput(file.string(), "{} columns for the fields {}: expected x y z and then the fields (setFormat "
                                      "raw, axis xyz)", cols, middle);
     }
-    const int nc = static_cast<int>((cols - 3) / names.size());
-    const bool first = !any;
-    if (first) {
-      for (const auto& r : rows) {
-        out.x.push_back(r[0]);
-        out.y.push_back(r[1]);
-        out.z.push_back(r[2]);
+    const std::size_t rows = table.rows();
+    const std::size_t nc = (cols - 3) / names.size();
+    if (!any) {
+      out.x.resize(rows);
+      out.y.resize(rows);
+      out.z.resize(rows);
+      for (std::size_t r = 0; r < rows; ++r) {
+        out.x[r] = table.at(r, 0);
+        out.y[r] = table.at(r, 1);
+        out.z[r] = table.at(r, 2);
       }
-    } else if (rows.size() != out.x.size()) {
-      core::failInput(file.string(), "{} points but {} in the other files of set '{}'", rows.size(), out.x.size(), set);
+    } else if (rows != out.x.size()) {
+      core::failInput(file.string(), "{} points but {} in the other files of set '{}'", rows, out.x.size(), set);
     }
     for (std::size_t f = 0; f < names.size(); ++f) {
-      std::vector<double> values(rows.size() * static_cast<std::size_t>(nc));
-      for (std::size_t r = 0; r < rows.size(); ++r) {
-        if (rows[r].size() != cols) core::failInput(file.string(), "line {} has {} columns; expected {}", r + 1, rows[r].size(), cols);
-        for (int c = 0; c < nc; ++c) values[r * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)] = rows[r][3 + f * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)];
-      }
+      std::vector<double> values(rows * nc);
+      for (std::size_t r = 0; r < rows; ++r)
+        for (std::size_t c = 0; c < nc; ++c) values[r * nc + c] = table.at(r, 3 + f * nc + c);
       out.fields[names[f]] = std::move(values);
-      out.components[names[f]] = nc;
+      out.components[names[f]] = static_cast<int>(nc);
     }
     any = true;
+  }
+  if (!any && !files.empty()) {
+    std::string wanted;
+    for (const std::string& n : needed) wanted += (wanted.empty() ? "" : ", ") + n;
+    core::failInput(out.source, "no {}*.xy file holds {}: add it to the `fields` of the sets function object",
+                    prefix, wanted);
   }
   if (!any) {
     core::failInput(out.source, "no {}*.xy files: the sets function object (setFormat raw) has no set named '{}' at "
                                 "this time", prefix, set);
   }
   return out;
+}
+
+Surface readRawSurface(const fs::path& timeFolder, const std::string& surface, const std::vector<std::string>& fieldNames) {
+  Surface s;
+  s.source = (timeFolder / surface).string() + " (raw)";
+  bool any = false;
+  for (const std::string& field : fieldNames) {
+    const fs::path file = timeFolder / (field + "_" + surface + ".raw");
+    if (!fs::exists(file)) continue;
+    const TextTable table = readTextTable(file);
+    // "# <field>  FACE_DATA <n>": point data would be values at the points, not on the faces.
+    std::size_t declared = table.rows();
+    if (!table.comments.empty()) {
+      const std::string& head = table.comments.front();
+      if (head.find("POINT_DATA") != std::string::npos) {
+        core::failInput(file.string(), "holds point data: sample the surface with `interpolate false` (face values)");
+      }
+      const std::size_t at = head.find("FACE_DATA");
+      if (at != std::string::npos) declared = std::strtoul(head.c_str() + at + 9, nullptr, 10);
+    }
+    if (declared != table.rows()) {
+      core::failInput(file.string(), "{} faces listed but the header says {}: the file is truncated", table.rows(), declared);
+    }
+    if (table.rows() > 0 && table.columns < 4) {
+      core::failInput(file.string(), "{} columns: expected x y z and the value(s) of {}", table.columns, field);
+    }
+    const std::size_t rows = table.rows(), nc = table.rows() > 0 ? table.columns - 3 : 1;
+    if (!any) {
+      s.centreX.resize(rows);
+      s.centreY.resize(rows);
+      s.centreZ.resize(rows);
+      for (std::size_t r = 0; r < rows; ++r) {
+        s.centreX[r] = table.at(r, 0);
+        s.centreY[r] = table.at(r, 1);
+        s.centreZ[r] = table.at(r, 2);
+      }
+    } else {
+      if (rows != s.faces()) {
+        core::failInput(file.string(), "{} faces but {} in the other fields of surface '{}'", rows, s.faces(), surface);
+      }
+      for (std::size_t r = 0; r < rows; ++r) {
+        if (table.at(r, 0) != s.centreX[r] || table.at(r, 1) != s.centreY[r] || table.at(r, 2) != s.centreZ[r]) {
+          core::failInput(file.string(), "face {} is at ({}, {}, {}) m but at ({}, {}, {}) m in the other fields of "
+                          "surface '{}'", r, table.at(r, 0), table.at(r, 1), table.at(r, 2), s.centreX[r],
+                          s.centreY[r], s.centreZ[r], surface);
+        }
+      }
+    }
+    std::vector<double> values(rows * nc);
+    for (std::size_t r = 0; r < rows; ++r)
+      for (std::size_t c = 0; c < nc; ++c) values[r * nc + c] = table.at(r, 3 + c);
+    s.fields[field] = std::move(values);
+    s.components[field] = static_cast<int>(nc);
+    any = true;
+  }
+  if (!any) {
+    core::failInput(s.source, "no <field>_{}.raw file for any of the fields: the surfaces function object "
+                              "(surfaceFormat raw) has no surface named '{}' at this time", surface, surface);
+  }
+  return s;
+}
+
+Surface readSurfaceIn(const fs::path& timeFolder, const std::string& surface, const std::vector<std::string>& fieldNames) {
+  for (const std::string& field : fieldNames) {
+    if (fs::exists(timeFolder / (field + "_" + surface + ".raw"))) return readRawSurface(timeFolder, surface, fieldNames);
+  }
+  for (const char* ext : {".vtk", ".vtp"}) {
+    const fs::path p = timeFolder / (surface + ext);
+    if (fs::exists(p)) return readSurface(p);
+  }
+  core::failInput(timeFolder.string(), "no <field>_{}.raw, {}.vtk or {}.vtp: the surfaces function object has no "
+                                       "surface named '{}' (or a different surface name was given)", surface,
+                  surface, surface, surface);
 }
 
 std::vector<SampleTime> listSampleTimes(const fs::path& functionFolder) {

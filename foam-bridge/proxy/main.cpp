@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
     c->add_option("--cells-surface", so.cellsSurface, "patchInternalField surface of the unit patches (U); '' = U of the units surface")->capture_default_str();
     c->add_option("--sets-function", so.setsFunction, "name of the sets function object")->capture_default_str();
     c->add_option("--eta-set", so.etaSet, "cellCentre set of the eta band")->capture_default_str();
+    c->add_option("--centres-function", so.centresFunction, "sets function object of the voxel centres (2D; "
+                  "absent: the sets function object's folder)")->capture_default_str();
     c->add_option("--centres-set", so.centresSet, "cloud set of the voxel centres (2D)")->capture_default_str();
     c->add_option("--p-field", so.pField)->capture_default_str();
     c->add_option("--u-field", so.uField)->capture_default_str();
@@ -107,6 +109,8 @@ int main(int argc, char** argv) {
   dict->add_option("--sampler-library", samplerLibrary, "libs entry of armourSampler")->capture_default_str();
   dict->add_option("-o,--output", dictOutput, "file to write (default: standard output)");
   dict->add_option("--function-objects", which, "both, sampler (armourSampler) or stock (surfaces and sets)")->capture_default_str();
+  dict->add_option("--surface-format", so.surfaceFormat, "surfaces output: raw (text, double precision) or vtk "
+                   "(binary, float; face areas for sample --forces-csv)")->capture_default_str();
 
   // ---- combine ----
   std::string seaState, variabilityFrom, combined;
@@ -157,6 +161,10 @@ int main(int argc, char** argv) {
         log->info("  no variability model: {}", s.variability.source);
       }
       if (!forcesCsv.empty()) {
+        if (s.pressureForce.size() != 3 * s.times.size()) {
+          core::failInput("--forces-csv", "the surfaces output has no face areas (surfaceFormat raw): write it with "
+                                          "`foam-proxy dict --surface-format vtk` to get the pressure force");
+        }
         std::ofstream out(forcesCsv);
         out << "time_s,Fx_N,Fy_N,Fz_N\n";
         for (std::size_t k = 0; k < s.times.size() && 3 * k + 2 < s.pressureForce.size(); ++k) {

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Speed of foam-bridge's pieces (docs/benchmarks-foam-bridge.md):
+// Speed of foam-bridge's pieces (docs/benchmarks.md, section foam-bridge):
 //  - BM_ReadSurface: foam-proxy reading one legacy VTK surface of N quad faces as OpenFOAM v1912's
 //    surfaces function object writes it (ASCII, or binary with --binary-vtk semantics), faces/s;
+//  - BM_ReadRawSurface: the same surface as `surfaceFormat raw` writes it at writePrecision 15
+//    (p, alpha.water, U: three text files of face centres and values), faces/s;
 //  - BM_RecordStatistics: the per-record work of the sampler on N faces (voxel sums, means, eta
 //    from 1000 cells, deviations into the histograms), the part the function object adds to a time
 //    step, faces/s;
@@ -89,6 +91,41 @@ void BM_ReadSurface(benchmark::State& state) {
   state.SetLabel(state.range(1) ? "binary" : "ascii");
 }
 BENCHMARK(BM_ReadSurface)->Args({10000, 0})->Args({10000, 1})->Args({200000, 0})->Args({200000, 1})->Unit(benchmark::kMillisecond);
+
+/// The raw output of a surface of n faces: <field>_units.raw for p, alpha.water and U, 15 digits.
+fs::path writeRawSurface(int n) {
+  const fs::path dir = fs::temp_directory_path() / ("bench-foam-bridge-raw-" + std::to_string(n) + "-" + std::to_string(::getpid()));
+  if (fs::exists(dir)) return dir;
+  fs::create_directories(dir);
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(0.0, 1.0);
+  for (const char* field : {"p", "alpha.water", "U"}) {
+    std::FILE* f = std::fopen((dir / (std::string(field) + "_units.raw")).c_str(), "w");
+    const bool vector = std::strcmp(field, "U") == 0;
+    std::fprintf(f, "# %s  FACE_DATA %d\n# x  y  z  %s\n", field, n, vector ? "U_x  U_y  U_z" : field);
+    for (int k = 0; k < n; ++k) {
+      const double x = 20.0 + 0.01 * (k % side + 0.5), z = -5.0 + 0.01 * (k / side + 0.5);
+      std::fprintf(f, "%.15g 22.25 %.15g", x, z);
+      if (vector) std::fprintf(f, " %.15g %.15g %.15g\n", jitter(rng), 1e-3 * jitter(rng), -jitter(rng));
+      else if (field[0] == 'p') std::fprintf(f, " %.15g\n", 1.2e5 * (1.0 + 0.1 * jitter(rng)));
+      else std::fprintf(f, " 1\n");
+    }
+    std::fclose(f);
+  }
+  return dir;
+}
+
+void BM_ReadRawSurface(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const fs::path dir = writeRawSurface(n);
+  for (auto _ : state) {
+    const proxy::Surface s = proxy::readSurfaceIn(dir, "units", {"p", "U", "alpha.water"});
+    benchmark::DoNotOptimize(s.centreX.data());
+  }
+  state.counters["faces/s"] = benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ReadRawSurface)->Arg(10000)->Arg(200000)->Unit(benchmark::kMillisecond);
 
 void BM_RecordStatistics(benchmark::State& state) {
   const std::size_t n = static_cast<std::size_t>(state.range(0));

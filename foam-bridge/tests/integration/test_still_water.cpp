@@ -131,8 +131,10 @@ protected:
     fs::create_directories(kWork);
     const fs::path serial = kWork / "serial", parallel = kWork / "parallel";
     fs::copy(kCase, serial, fs::copy_options::recursive);
-    // The function objects, from foam-proxy dict, with the sampler's per-face debug output.
-    runs.error = run(std::string(ARMOUR_FOAM_PROXY) + " dict --patches unit --sampler-library " + ARMOUR_SAMPLER_LIB +
+    // The function objects, from foam-proxy dict, with the sampler's per-face debug output. The
+    // surfaces in binary VTK (float, with the polygons): the offline pressure force needs the face
+    // areas; the raw (double) format is checked by cases.nwt3d.sampled.
+    runs.error = run(std::string(ARMOUR_FOAM_PROXY) + " dict --surface-format vtk --patches unit --sampler-library " + ARMOUR_SAMPLER_LIB +
                          kGridArgs + " -o system/armourFunctions", serial, "log.dict");
     if (!runs.error.empty()) return;
     {

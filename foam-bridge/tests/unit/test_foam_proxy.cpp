@@ -62,6 +62,64 @@ TEST(SurfaceSeries, ReadsLegacyVtkOfTheSurfacesFunctionObject) {
   fs::remove_all(d);
 }
 
+// The raw surface format as v1912's rawSurfaceWriter writes it: one file per field, face centres
+// and values as text. Values must come back bit for bit (17 digits written: the round trip of a
+// double is exact), which is what makes the offline storm file equal the online one.
+TEST(SurfaceSeries, ReadsRawOutputOfTheSurfacesFunctionObjectExactly) {
+  const fs::path d = tempDir("raw");
+  const double p1 = 117719.98765432101, z1 = 1.4999999999999998;
+  {
+    std::ofstream f(d / "p_units.raw");
+    f.precision(17);
+    f << "# p  FACE_DATA 2\n# x  y  z  p\n21 1.25 2.125 100.5\n24 3.75 " << z1 << " " << p1 << "\n";
+    std::ofstream u(d / "U_units.raw");
+    u.precision(17);
+    u << "# U  FACE_DATA 2\n# x  y  z  U_x  U_y  U_z\n21 1.25 2.125 1 2 3\n24 3.75 " << z1 << " 4 5 -6e-05\n";
+  }
+  const proxy::Surface s = proxy::readSurfaceIn(d, "units", {"p", "U", "alpha.water"});
+  ASSERT_EQ(s.faces(), 2u);
+  EXPECT_FALSE(s.hasGeometry());
+  EXPECT_EQ(s.centreX[1], 24.0);
+  EXPECT_EQ(s.centreZ[1], z1);
+  EXPECT_EQ(s.field("p", 1)[1], p1);
+  EXPECT_EQ(s.field("U", 3)[5], -6e-05);
+  EXPECT_THROW(s.field("alpha.water", 1), core::InputError);
+  // A truncated file, a field whose faces are elsewhere, point data: refused with the file named.
+  std::ofstream(d / "alpha.water_units.raw") << "# alpha.water  FACE_DATA 2\n# x  y  z  alpha.water\n21 1.25 2.125 1\n";
+  EXPECT_THROW(proxy::readSurfaceIn(d, "units", {"p", "U", "alpha.water"}), core::InputError);
+  std::ofstream(d / "alpha.water_units.raw") << "# alpha.water  FACE_DATA 2\n# x  y  z  alpha.water\n21 1.25 2.125 1\n24 3.75 1.5 1\n";
+  EXPECT_THROW(proxy::readSurfaceIn(d, "units", {"p", "U", "alpha.water"}), core::InputError);
+  std::ofstream(d / "p_cells.raw") << "# p  POINT_DATA 1\n# x  y  z  p\n0 0 0 1\n";
+  EXPECT_THROW(proxy::readSurfaceIn(d, "cells", {"p"}), core::InputError);
+  EXPECT_THROW(proxy::readSurfaceIn(d, "nothing", {"p"}), core::InputError);
+  fs::remove_all(d);
+}
+
+// The sets function object's raw output: scalar fields share a file named after all of them
+// (p_rgh must not be split into p and rgh), vectors have their own; values come back bit for bit;
+// files holding none of the needed fields are not read; ragged lines are refused.
+TEST(SurfaceSeries, ReadsSetsOutputAndSkipsUnneededFiles) {
+  const fs::path d = tempDir("sets");
+  std::ofstream(d / "eta_alpha.water_p_rgh.xy") << "21.5 3 0.25 1 98765.4321012345\n21.5\t3 0.75 0.25 -1e-07\n";
+  std::ofstream(d / "eta_U.xy") << "21.5 3 0.25 1 2 3\n21.5 3 0.75 4 5 6\n";
+  const std::vector<std::string> names = {"alpha.water", "p_rgh", "U"};
+  const proxy::PointSet all = proxy::readPointSet(d, "eta", names);
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all.z[1], 0.75);
+  EXPECT_EQ(all.field("p_rgh", 1)[0], 98765.4321012345);
+  EXPECT_EQ(all.field("p_rgh", 1)[1], -1e-07);
+  EXPECT_EQ(all.field("U", 3)[5], 6.0);
+  const proxy::PointSet alphaOnly = proxy::readPointSet(d, "eta", names, {"alpha.water"});
+  EXPECT_EQ(alphaOnly.field("alpha.water", 1)[1], 0.25);
+  EXPECT_THROW(alphaOnly.field("U", 3), core::InputError);
+  EXPECT_THROW(proxy::readPointSet(d, "eta", names, {"T"}), core::InputError);
+  std::ofstream(d / "bad_p.xy") << "1 2 3 4\n1 2 3\n";
+  EXPECT_THROW(proxy::readPointSet(d, "bad", {"p"}), core::InputError);
+  std::ofstream(d / "word_p.xy") << "1 2 3 four\n";
+  EXPECT_THROW(proxy::readPointSet(d, "word", {"p"}), core::InputError);
+  fs::remove_all(d);
+}
+
 TEST(SurfaceSeries, ListsNumericTimeFoldersInOrder) {
   const fs::path d = tempDir("times");
   for (const char* t : {"0.1", "0.05", "1e-1x", "10", "0.15"}) fs::create_directories(d / t);

@@ -53,6 +53,30 @@ TEST(VoxelGrid, BinsByDivisionWithHalfOpenIntervals) {
   EXPECT_NEAR(grid.trunkMiddle(), 2.5, 1e-12);
 }
 
+// A face centre on a voxel boundary, computed two ways (mesh face centre online, recomputed from
+// the written points offline), comes out a few ulp either side of it: both must land in the same
+// voxel, the one above the boundary. 1e-12 m is ~1e3 ulp of x = 10 m, beyond any round-off of the
+// two centre formulas; 1e-4 of a voxel below is a real position and stays in the voxel below.
+TEST(VoxelGrid, CentresWithinRoundOffOfABoundaryGoAbove) {
+  const VoxelGrid grid(smallGrid());
+  const double boundaryX = 10.0 + 2 * 0.05, boundaryZ = -0.1 + 0.1;
+  EXPECT_EQ(grid.column(std::nextafter(boundaryX, 0.0)), 2);
+  EXPECT_EQ(grid.column(boundaryX - 1e-12), 2);
+  EXPECT_EQ(grid.column(boundaryX + 1e-12), 2);
+  EXPECT_EQ(grid.column(boundaryX - 1e-4 * 0.05), 1);
+  EXPECT_EQ(grid.row(boundaryZ - 1e-12), 1);
+  EXPECT_EQ(grid.row(boundaryZ + 1e-12), 1);
+  EXPECT_EQ(grid.row(boundaryZ - 1e-4 * 0.1), 0);
+  // The grid ends: the offshore face is in, the far face out, whichever side of them round-off puts a centre.
+  EXPECT_EQ(grid.column(10.0 - 1e-12), 0);
+  EXPECT_EQ(grid.column(10.2 - 1e-12), -1);
+  EXPECT_EQ(grid.row(0.2 - 1e-12), -1);
+  // The trunk ends are closed, also for centres a round-off outside them.
+  EXPECT_EQ(grid.voxel(10.07, 2.0 - 1e-12, 0.05), 5);
+  EXPECT_EQ(grid.voxel(10.07, 3.0 + 1e-12, 0.05), 5);
+  EXPECT_EQ(grid.voxel(10.07, 2.0 - 1e-4, 0.05), -1);
+}
+
 TEST(VoxelGrid, RefusesBadSettings) {
   VoxelGridSettings g = smallGrid();
   g.nx = 1;
