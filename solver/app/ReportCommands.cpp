@@ -1,8 +1,906 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/ReportCommands.hpp"
 
-namespace armour::app {
+#include "analysis/DesignFormulas.hpp"
+#include "analysis/Displacement.hpp"
+#include "app/PackAnalysis.hpp"
+#include "core/AtomicFile.hpp"
+#include "core/Error.hpp"
+#include "io/SceneReader.hpp"
+#include "storm/StormFile.hpp"
 
-void addReportCommands(CLI::App& /*app*/, GlobalOptions& /*global*/) {}
+#include <fmt/format.h>
+#include <netcdf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef ARMOUR_UTILITIES_DIR
+#define ARMOUR_UTILITIES_DIR ""
+#endif
+
+namespace armour::app {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+struct ReportOptions {
+  std::string run;                 ///< the run's output folder
+  std::string scene;               ///< default: the scene named in bodies.nc's history
+  std::string storm;               ///< default: the scene's hydro storm file
+  std::string output;              ///< default: RUN_DIR/report
+  std::string prefix;              ///< units: movable bodies whose names start with it (default: the hydro bodies)
+  std::string axis = "nose";       ///< unit axis for P2
+  std::vector<double> voxel;       ///< (x, z) of the pressure history (unit: m)
+  double gaugeX = kNaN;            ///< x of the eta gauge (unit: m); default the slope's toe
+  std::string stormWindow = "run"; ///< storm records in storm.csv: "run" (the replayed window) or "all"
+  double hs = kNaN;                ///< override of the storm's Hs (unit: m)
+  double tm = kNaN;                ///< override of the mean period (unit: s)
+  double tp = kNaN;                ///< override of the peak period (unit: s)
+  double cotAlpha = kNaN;          ///< override of the slope (unit: -)
+  double permeability = 0.4;       ///< van der Meer's P (unit: -)
+  double porosity = kNaN;          ///< armour layer porosity for S (unit: -); default the pack's
+  double displacedDn = 1.0;        ///< a unit moved by more than this is displaced, for Nod and S (unit: Dn)
+  bool breaking = false;           ///< Hudson's K_D for breaking waves
+  bool noPlots = false;
+};
+
+std::string jsonNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out + "\"";
+}
+std::string csvNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("NaN"); }
+
+// ------------------------------------------------------------------------------------------------
+// bodies.nc
+// ------------------------------------------------------------------------------------------------
+
+/// The parts of bodies.nc the report reads: the body table, the times, and the history attribute.
+/// Records are read block by block (streaming: a one-hour series does not fit in memory).
+class SeriesReader {
+public:
+  explicit SeriesReader(const fs::path& path) : path_(path) {
+    if (!fs::exists(path))
+      core::failInput(path.string(), "missing: the run folder has no body series; give the output folder of a run "
+                                     "(`armour run` writes bodies.nc there when output.series_interval > 0)");
+    check(nc_open(path.c_str(), NC_NOWRITE, &ncid_),
+          "open (not a readable netCDF file: cut short or damaged, so rerun the scene or restart it from its "
+          "checkpoint; or locked by a run still writing it, so set HDF5_USE_FILE_LOCKING=FALSE)");
+    std::size_t strlen = 0;
+    check(nc_inq_dimid(ncid_, "time", &timeDim_), "dimension 'time'");
+    check(nc_inq_dimlen(ncid_, timeDim_, &records_), "dimension 'time'");
+    int dim = 0;
+    check(nc_inq_dimid(ncid_, "body", &dim), "dimension 'body'");
+    check(nc_inq_dimlen(ncid_, dim, &bodies_), "dimension 'body'");
+    check(nc_inq_dimid(ncid_, "name_strlen", &dim), "dimension 'name_strlen'");
+    check(nc_inq_dimlen(ncid_, dim, &strlen), "dimension 'name_strlen'");
+    check(nc_inq_varid(ncid_, "time", &timeVar_), "variable 'time'");
+    check(nc_inq_varid(ncid_, "position", &positionVar_), "variable 'position'");
+    check(nc_inq_varid(ncid_, "orientation", &orientationVar_), "variable 'orientation'");
+    int nameVar = 0;
+    check(nc_inq_varid(ncid_, "body_name", &nameVar), "variable 'body_name'");
+    if (records_ < 1)
+      core::failInput(path_.string(), "holds no records: the run stopped before its first series output; run it "
+                                      "longer or restart it");
+    times_.resize(records_);
+    check(nc_get_var_double(ncid_, timeVar_, times_.data()), "variable 'time'");
+    std::vector<char> names(bodies_ * std::max<std::size_t>(strlen, 1), '\0');
+    if (strlen > 0) check(nc_get_var_text(ncid_, nameVar, names.data()), "variable 'body_name'");
+    for (std::size_t b = 0; b < bodies_; ++b) {
+      std::string n(names.data() + b * strlen, strlen);
+      n = n.substr(0, n.find('\0'));
+      names_.push_back(n);
+    }
+    std::size_t length = 0;
+    if (nc_inq_attlen(ncid_, NC_GLOBAL, "history", &length) == NC_NOERR) {
+      std::string h(length, '\0');
+      if (nc_get_att_text(ncid_, NC_GLOBAL, "history", h.data()) == NC_NOERR) history_ = h;
+    }
+  }
+  ~SeriesReader() {
+    if (ncid_ >= 0) nc_close(ncid_);
+  }
+  SeriesReader(const SeriesReader&) = delete;
+  SeriesReader& operator=(const SeriesReader&) = delete;
+
+  [[nodiscard]] std::size_t records() const { return records_; }
+  [[nodiscard]] const std::vector<double>& times() const { return times_; }
+  [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
+  [[nodiscard]] const std::string& history() const { return history_; }
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+  /// Positions of records [k0, k0 + n): (record, body, 3) (unit: m).
+  void positions(std::size_t k0, std::size_t n, std::vector<double>& out) const {
+    out.resize(n * bodies_ * 3);
+    const std::size_t start[3] = {k0, 0, 0}, count[3] = {n, bodies_, 3};
+    check(nc_get_vara_double(ncid_, positionVar_, start, count, out.data()), "variable 'position'");
+  }
+  /// Orientations (w, x, y, z) of record k: (body, 4).
+  void orientations(std::size_t k, std::vector<double>& out) const {
+    out.resize(bodies_ * 4);
+    const std::size_t start[3] = {k, 0, 0}, count[3] = {1, bodies_, 4};
+    check(nc_get_vara_double(ncid_, orientationVar_, start, count, out.data()), "variable 'orientation'");
+  }
+
+private:
+  void check(int status, const char* what) const {
+    if (status != NC_NOERR)
+      core::failInput(path_.string(), "{}: {}; is it the bodies.nc of an `armour run`? (see docs/output-files.md)",
+                      what, nc_strerror(status));
+  }
+  fs::path path_;
+  int ncid_ = -1;
+  int timeDim_ = -1, timeVar_ = -1, positionVar_ = -1, orientationVar_ = -1;
+  std::size_t records_ = 0, bodies_ = 0;
+  std::vector<double> times_;
+  std::vector<std::string> names_;
+  std::string history_;
+};
+
+/// The scene a run was made from: the argument after `run` on the last line of the history
+/// attribute that has one, looked for as given, relative to the current folder and to the run
+/// folder's parent.
+fs::path sceneFromHistory(const SeriesReader& series, const fs::path& runDir) {
+  std::istringstream lines(series.history());
+  std::string line, named;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string w;
+    bool afterRun = false;
+    while (words >> w) {
+      if (afterRun && !w.empty() && w[0] != '-') {
+        named = w;
+        break;
+      }
+      if (w == "run") afterRun = true;
+    }
+  }
+  if (named.empty())
+    core::failInput(series.path().string(), "its history attribute names no `armour run <scene>`; give the scene "
+                                            "with --scene");
+  for (const fs::path& candidate :
+       {fs::path(named), runDir.parent_path() / fs::path(named).filename(), runDir.parent_path() / named})
+    if (fs::is_regular_file(candidate)) return candidate;
+  core::failInput(series.path().string(),
+                  "the run was made from '{}', which is not found from here; give the scene "
+                  "with --scene",
+                  named);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Storm input: wave statistics of eta at a gauge
+// ------------------------------------------------------------------------------------------------
+
+struct WaveStatistics {
+  double hs = kNaN;      ///< H1/3 of the zero-down-crossing waves (unit: m)
+  double hmax = kNaN;    ///< (unit: m)
+  double hm0 = kNaN;     ///< 4 sqrt(m0) (unit: m)
+  double tm = kNaN;      ///< mean zero-down-crossing period (unit: s)
+  double tp = kNaN;      ///< peak period of the periodogram (unit: s)
+  std::size_t waves = 0; ///< complete zero-down-crossing waves (unit: -)
+};
+
+/// In-place radix-2 FFT (size a power of 2).
+void fft(std::vector<std::complex<double>>& a) {
+  const std::size_t n = a.size();
+  for (std::size_t i = 1, j = 0; i < n; ++i) {
+    std::size_t bit = n >> 1;
+    for (; j & bit; bit >>= 1) j ^= bit;
+    j ^= bit;
+    if (i < j) std::swap(a[i], a[j]);
+  }
+  for (std::size_t len = 2; len <= n; len <<= 1) {
+    const double angle = -2.0 * std::numbers::pi / static_cast<double>(len);
+    const std::complex<double> w(std::cos(angle), std::sin(angle));
+    for (std::size_t i = 0; i < n; i += len) {
+      std::complex<double> wk(1.0, 0.0);
+      for (std::size_t k = 0; k < len / 2; ++k) {
+        const auto u = a[i + k], v = a[i + k + len / 2] * wk;
+        a[i + k] = u + v;
+        a[i + k + len / 2] = u - v;
+        wk *= w;
+      }
+    }
+  }
+}
+
+/// Time-domain (zero down-crossing) and spectral statistics of a surface elevation record.
+WaveStatistics waveStatistics(const std::vector<double>& t, const std::vector<double>& eta) {
+  WaveStatistics s;
+  const std::size_t n = t.size();
+  if (n < 4) return s;
+  double mean = 0.0;
+  for (double e : eta) mean += e / static_cast<double>(n);
+  double var = 0.0;
+  for (double e : eta) var += (e - mean) * (e - mean) / static_cast<double>(n);
+  s.hm0 = 4.0 * std::sqrt(var);
+  // Zero down-crossings (about the mean), at the interpolated crossing times.
+  std::vector<double> crossings;
+  std::vector<std::size_t> crossingIndex;
+  for (std::size_t k = 1; k < n; ++k) {
+    const double a = eta[k - 1] - mean, b = eta[k] - mean;
+    if (a > 0.0 && b <= 0.0) {
+      crossings.push_back(t[k - 1] + (t[k] - t[k - 1]) * a / (a - b));
+      crossingIndex.push_back(k);
+    }
+  }
+  std::vector<double> heights;
+  for (std::size_t w = 1; w < crossings.size(); ++w) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t k = crossingIndex[w - 1]; k < crossingIndex[w]; ++k) {
+      lo = std::min(lo, eta[k]);
+      hi = std::max(hi, eta[k]);
+    }
+    heights.push_back(hi - lo);
+  }
+  s.waves = heights.size();
+  if (!heights.empty()) {
+    s.tm = (crossings.back() - crossings.front()) / static_cast<double>(heights.size());
+    std::sort(heights.begin(), heights.end(), std::greater<>());
+    const std::size_t third = std::max<std::size_t>(1, heights.size() / 3);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < third; ++i) sum += heights[i];
+    s.hs = sum / static_cast<double>(third);
+    s.hmax = heights.front();
+  }
+  // Periodogram on a uniform resampling (records may be unevenly spaced), zero-padded to 2^m.
+  const double duration = t.back() - t.front();
+  const double dt = duration / static_cast<double>(n - 1);
+  std::size_t m = 1;
+  while (m < n) m <<= 1;
+  std::vector<std::complex<double>> a(m, 0.0);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ti = t.front() + dt * static_cast<double>(i);
+    while (j + 2 < n && t[j + 1] < ti) ++j;
+    const double r = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
+    a[i] = (1.0 - r) * eta[j] + r * eta[j + 1] - mean;
+  }
+  fft(a);
+  double best = 0.0;
+  std::size_t peak = 0;
+  for (std::size_t f = 1; f < m / 2; ++f)
+    if (std::norm(a[f]) > best) {
+      best = std::norm(a[f]);
+      peak = f;
+    }
+  if (peak > 0) s.tp = static_cast<double>(m) * dt / static_cast<double>(peak);
+  return s;
+}
+
+/// "Hs=7 m", "Hs 7 m", "H=1.5 m" (regular waves) and "Tp 11 s", "T=6 s" in a provenance text.
+double provenanceValue(const std::string& text, const char* symbols) {
+  const std::regex re(std::string("\\b(?:") + symbols + ")\\s*[= ]\\s*([0-9]+(?:\\.[0-9]+)?)\\s*(?:m|s)\\b");
+  std::smatch m;
+  if (std::regex_search(text, m, re)) return std::stod(m[1].str());
+  return kNaN;
+}
+
+// ------------------------------------------------------------------------------------------------
+// The report
+// ------------------------------------------------------------------------------------------------
+
+/// One design formula's verdict for the summary.
+struct FormulaResult {
+  std::string name;
+  std::string source;
+  bool applicable = false;
+  std::string note; ///< why not applicable, or what the numbers mean
+  std::vector<std::pair<std::string, double>> values;
+};
+
+struct UnitInfo {
+  std::size_t sceneIndex = 0;
+  std::size_t seriesIndex = 0;
+  double dn = 0.0;
+};
+
+void runPython(const fs::path& folder, const fs::path& runDir) {
+  const fs::path script = fs::path(ARMOUR_UTILITIES_DIR) / "report.py";
+  if (!fs::exists(script)) {
+    std::cout << fmt::format("plots and index.html skipped: {} not found\n", script.string());
+    return;
+  }
+  const std::string command =
+      fmt::format("/usr/bin/python3 '{}' '{}' --run '{}'", script.string(), folder.string(), runDir.string());
+  if (std::system(command.c_str()) != 0)
+    std::cout << fmt::format("plots failed (python3 with numpy and matplotlib needed): {}\n", command);
+}
+
+/// The storm input of a run: wave statistics of eta at the gauge, the provenance's Hs and Tp, and
+/// the pressure history at a voxel over the run's window (storm.csv).
+struct StormSummary {
+  WaveStatistics waves;
+  double gaugeX = kNaN;         ///< (unit: m)
+  double voxelX = kNaN;         ///< (unit: m)
+  double voxelZ = kNaN;         ///< (unit: m)
+  double waterDensity = 1025.0; ///< (unit: kg/m^3); sea water without a storm file
+  double offset = 0.0;          ///< storm time at run time 0 (unit: s)
+  double swl = kNaN;            ///< still water level (unit: m)
+  double provHs = kNaN;         ///< Hs (or H) the provenance states (unit: m)
+  double provTp = kNaN;         ///< Tp (or T) the provenance states (unit: s)
+  std::string title;
+  std::string csv = "storm_time_s,run_time_s,pressure_Pa,eta_gauge_m,alpha\n";
+  std::size_t records = 0;
+  double start = kNaN, end = kNaN; ///< first and last record time (unit: s)
+};
+
+StormSummary summariseStorm(const fs::path& stormPath, const io::Scene& scene, const ReportOptions& o,
+                            const Eigen::Vector3d& unitsMean, double runStart, double runEnd) {
+  StormSummary s;
+  if (stormPath.empty()) return s;
+  const storm::StormReader reader(stormPath.string());
+  const storm::StormHeader& h = reader.header();
+  const std::vector<double>& times = reader.times();
+  s.waterDensity = h.waterDensity;
+  s.swl = h.stillWaterLevel;
+  s.title = h.provenance.title;
+  s.records = times.size();
+  s.start = times.front();
+  s.end = times.back();
+  // The run's time offset applies when the storm is the scene's own (however the path is spelt).
+  std::error_code same;
+  const bool scenesStorm = scene.hydro.enabled && scene.hydro.model == hydro::HydroModel::Storm &&
+                           fs::equivalent(stormPath, fs::path(scene.hydro.storm.file), same);
+  s.offset = scenesStorm ? scene.hydro.storm.timeOffset : 0.0;
+  const std::string prov = h.provenance.title + " " + h.provenance.sourceCase + " " + h.provenance.comment;
+  s.provHs = provenanceValue(prov, "Hs|Hm0|H");
+  s.provTp = provenanceValue(prov, "Tp|T");
+  const auto nearest = [](const std::vector<double>& axis, double v) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < axis.size(); ++i)
+      if (std::abs(axis[i] - v) < std::abs(axis[best] - v)) best = i;
+    return best;
+  };
+  // The gauge: the slope's toe (the waves at the structure), else the offshore column.
+  s.gaugeX = o.gaugeX;
+  if (!std::isfinite(s.gaugeX))
+    s.gaugeX = scene.statics.slopes.empty() ? h.x.front() : scene.statics.slopes.front().origin.x();
+  const std::size_t ig = nearest(h.x, s.gaugeX);
+  s.gaugeX = h.x[ig];
+  std::vector<double> eta(times.size());
+  for (std::size_t k = 0; k < times.size(); ++k) eta[k] = reader.eta(k)[ig];
+  s.waves = waveStatistics(times, eta);
+  // The voxel: given, or a permanently submerged one with data near the units (seed 000 Fig. 5:
+  // "a permanently submerged cell inside the armour layer near the centre of the model").
+  std::size_t ix = 0, iz = 0;
+  if (o.voxel.size() == 2) {
+    ix = nearest(h.x, o.voxel[0]);
+    iz = nearest(h.z, o.voxel[1]);
+    if (h.samples[iz * h.nx() + ix] == 0)
+      core::failInput("--voxel",
+                      "{} {}: the voxel x = {} m, z = {} m of {} holds no data (samples = 0); choose a "
+                      "voxel in the armour layer",
+                      o.voxel[0], o.voxel[1], h.x[ix], h.z[iz], stormPath.string());
+  } else {
+    const Eigen::Vector3d& mean = unitsMean;
+    ix = nearest(h.x, mean.x());
+    double etaMin = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < times.size(); ++k) etaMin = std::min(etaMin, reader.eta(k)[ix]);
+    const double zTarget = std::min(mean.z(), h.stillWaterLevel + etaMin - h.dz());
+    double best = std::numeric_limits<double>::infinity();
+    bool found = false;
+    for (std::size_t j = 0; j < h.nz(); ++j)
+      for (std::size_t i = 0; i < h.nx(); ++i) {
+        if (h.samples[j * h.nx() + i] == 0) continue;
+        // Prefer voxels below the lowest trough (permanently submerged), then the nearest.
+        const double penalty = h.z[j] > zTarget ? 1e6 : 0.0;
+        const double dist = std::hypot(h.x[i] - mean.x(), h.z[j] - zTarget) + penalty;
+        if (dist < best) {
+          best = dist;
+          ix = i;
+          iz = j;
+          found = true;
+        }
+      }
+    if (!found) core::failInput(stormPath.string(), "no voxel holds data (samples = 0 everywhere)");
+  }
+  s.voxelX = h.x[ix];
+  s.voxelZ = h.z[iz];
+  storm::StormRecord record;
+  // The run's window: from the record at or before its start to the one at or after its end.
+  std::size_t k0 = 0, k1 = times.size();
+  if (o.stormWindow == "run") {
+    while (k0 + 1 < times.size() && times[k0 + 1] - s.offset <= runStart) ++k0;
+    k1 = k0;
+    while (k1 < times.size() && times[k1] - s.offset < runEnd) ++k1;
+    k1 = std::min(k1 + 1, times.size());
+  }
+  for (std::size_t k = k0; k < k1; ++k) {
+    const double runTime = times[k] - s.offset;
+    reader.read(k, record);
+    const std::size_t v = iz * h.nx() + ix;
+    s.csv +=
+        fmt::format("{},{},{},{},{}\n", times[k], runTime, csvNumber(record.p[v]), eta[k], csvNumber(record.alpha[v]));
+  }
+  return s;
+}
+
+/// What the design formulas need of the run and its storm.
+struct DesignInputs {
+  std::string unitType;      ///< shape-library name of the units
+  double ns = kNaN;          ///< Hs / (Delta Dn) (unit: -)
+  double cotAlpha = kNaN;    ///< slope (unit: -)
+  double steepness = kNaN;   ///< s_om (unit: -)
+  double xi = kNaN;          ///< xi_m (unit: -)
+  double waves = kNaN;       ///< N in the run (unit: -)
+  double tm = kNaN;          ///< mean period (unit: s)
+  double duration = 0.0;     ///< the run's duration (unit: s)
+  double permeability = 0.4; ///< van der Meer's P (unit: -)
+  bool breaking = false;     ///< Hudson's K_D for breaking waves
+};
+
+/// Each formula that applies to the unit type, evaluated or marked not applicable with the reason.
+std::vector<FormulaResult> designFormulas(const DesignInputs& in) {
+  std::vector<FormulaResult> formulas;
+  const auto attempt = [&](const char* name, const char* source, const std::function<void(FormulaResult&)>& f) {
+    FormulaResult r;
+    r.name = name;
+    r.source = source;
+    if (!std::isfinite(in.ns))
+      r.note = "no storm: Hs unknown (give --storm or --hs)";
+    else if (!std::isfinite(in.cotAlpha))
+      r.note = "no slope: give --cot";
+    else {
+      try {
+        f(r);
+        r.applicable = true;
+      } catch (const core::InputError& e) {
+        r.note = std::string("not applicable: ") + e.what();
+      }
+    }
+    formulas.push_back(std::move(r));
+  };
+  attempt("Hudson", "Hudson (1959); SPM (1984); CEM (2006)", [&](FormulaResult& r) {
+    const analysis::HudsonCoefficient& c = analysis::hudsonCoefficient(in.unitType);
+    const double kd = in.breaking ? c.kdBreaking : c.kdNonBreaking;
+    const double nsH = analysis::hudsonStabilityNumber(kd, in.cotAlpha);
+    r.source += "; K_D: " + c.source;
+    r.values = {{"K_D", kd}, {"Ns_hudson", nsH}, {"Ns_storm", in.ns}, {"Ns_ratio", in.ns / nsH}};
+    r.note =
+        fmt::format("{} ({} waves); no damage (0-5 % displaced) expected while Ns_storm <= Ns_hudson: {}",
+                    c.description, in.breaking ? "breaking" : "non-breaking", in.ns <= nsH ? "within" : "exceeded");
+    if (in.cotAlpha < c.cotMin - 1e-9 || in.cotAlpha > c.cotMax + 1e-9)
+      r.note += fmt::format("; K_D is given for cot alpha {}-{}, the slope is {:.3g}", c.cotMin, c.cotMax, in.cotAlpha);
+  });
+  const bool isRock = in.unitType == "rock" || in.unitType == "voronoi-rock";
+  if (isRock) {
+    attempt("van der Meer rock", "van der Meer (1988)", [&](FormulaResult& r) {
+      if (!std::isfinite(in.steepness)) core::failInput("van der Meer (rock)", "no mean period Tm: give --tm");
+      const analysis::RockDamage d =
+          analysis::vanDerMeerRockDamage({in.ns, in.steepness, in.cotAlpha, in.permeability, in.waves});
+      r.values = {{"S", d.damage},
+                  {"xi_m", d.iribarren},
+                  {"xi_mc", d.iribarrenCritical},
+                  {"N", in.waves},
+                  {"P", in.permeability}};
+      r.note = d.plunging ? "plunging waves" : "surging waves";
+    });
+    attempt("Melby and Kobayashi", "Melby and Kobayashi (1998)", [&](FormulaResult& r) {
+      if (!std::isfinite(in.tm)) core::failInput("Melby and Kobayashi", "no mean period Tm: give --tm");
+      const analysis::ProgressedDamage d =
+          analysis::melbyKobayashiDamage({{in.duration, in.ns, in.tm}}, in.cotAlpha, {in.xi});
+      r.values = {{"S", d.damage}, {"sigma_S", d.standardDeviation}, {"t_s", in.duration}};
+      r.note = "mean damage after the run's duration, one stage of constant Hs and Tm";
+    });
+  } else if (in.unitType == "cube") {
+    attempt("van der Meer cubes", "van der Meer (1988)", [&](FormulaResult& r) {
+      if (!std::isfinite(in.steepness)) core::failInput("van der Meer (cubes)", "no mean period Tm: give --tm");
+      r.values = {{"Nod", analysis::vanDerMeerCubesNod(in.ns, in.waves, in.steepness, in.cotAlpha)}, {"N", in.waves}};
+      r.note = "displaced units per Dn-wide strip after N waves";
+    });
+  } else if (in.unitType == "tetrapod") {
+    attempt("van der Meer tetrapods", "van der Meer (1988)", [&](FormulaResult& r) {
+      if (!std::isfinite(in.steepness)) core::failInput("van der Meer (tetrapods)", "no mean period Tm: give --tm");
+      r.values = {{"Nod", analysis::vanDerMeerTetrapodsNod(in.ns, in.waves, in.steepness, in.cotAlpha)},
+                  {"N", in.waves}};
+      r.note = "displaced units per Dn-wide strip after N waves";
+    });
+  } else if (in.unitType == "accropode") {
+    attempt("van der Meer Accropode", "van der Meer (1988)", [&](FormulaResult& r) {
+      if (!std::isfinite(in.steepness)) core::failInput("van der Meer (Accropode)", "no mean period Tm: give --tm");
+      const analysis::AccropodeStability a = analysis::vanDerMeerAccropode(in.ns, in.steepness, in.cotAlpha);
+      r.values = {{"Ns_start_of_damage", a.startOfDamage}, {"Ns_failure", a.failure}, {"Ns_storm", in.ns}};
+      r.note = a.verdict;
+    });
+  }
+
+  return formulas;
+}
+
+void report(const ReportOptions& o) {
+  const fs::path runDir = fs::absolute(o.run).lexically_normal();
+  if (!fs::is_directory(runDir))
+    core::failInput(o.run, "not a folder; give the output folder of `armour run` (the scene's output.folder, e.g. "
+                           "wave-slope-out)");
+  if (!(o.displacedDn > 0.0)) core::failInput("--displaced-dn", "{}: must be positive (unit: Dn)", o.displacedDn);
+  if (o.stormWindow != "run" && o.stormWindow != "all")
+    core::failInput("--storm-window", "'{}': give run or all", o.stormWindow);
+  const SeriesReader series(runDir / "bodies.nc");
+  const fs::path scenePath = o.scene.empty() ? sceneFromHistory(series, runDir) : fs::path(o.scene);
+  const io::Scene scene = io::readScene(scenePath);
+
+  // Units: movable bodies with the prefix (default: those the hydro loads act on).
+  std::string prefix = o.prefix;
+  if (prefix.empty() && scene.hydro.enabled && scene.hydro.bodies != "all") prefix = scene.hydro.bodies;
+  std::map<std::string, std::size_t> seriesIndex;
+  for (std::size_t b = 0; b < series.names().size(); ++b) seriesIndex[series.names()[b]] = b;
+  std::vector<UnitInfo> units;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const io::Body& b = scene.bodies[i];
+    if (b.fixed || b.name.rfind(prefix, 0) != 0) continue;
+    const auto it = seriesIndex.find(b.name);
+    if (it == seriesIndex.end())
+      core::failInput(series.path().string(),
+                      "has no body '{}' of the scene {}: the run was made from another scene; "
+                      "give its scene with --scene",
+                      b.name, scenePath.string());
+    if (!b.volume)
+      core::failInput(scenePath.string(),
+                      "body '{}' has no volume (a mesh used at its own size): the report needs Dn; "
+                      "give the body a volume",
+                      b.name);
+    units.push_back({i, it->second, std::cbrt(*b.volume)});
+  }
+  if (units.empty())
+    core::failInput(scenePath.string(), "no units: no movable body{}", prefix.empty() ? "" : " named " + prefix + "*");
+  const std::size_t nu = units.size();
+
+  // Poses before (the scene) and after (the last record). bodies.nc holds the principal frame; the
+  // natural frame the scene and P2 use is q_nat = q_p(t) q_p(0)^-1 q_scene (the first record is
+  // the scene's state), and the rotation between two states is the same in either frame.
+  const std::size_t last = series.records() - 1;
+  std::vector<double> pos, q0, q1;
+  series.positions(last, 1, pos);
+  series.orientations(0, q0);
+  series.orientations(last, q1);
+  PoseMap before, after;
+  std::vector<Eigen::Vector3d> xBefore(nu), xAfter(nu);
+  std::vector<Eigen::Quaterniond> qBefore(nu), qAfter(nu);
+  std::vector<double> dn(nu);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const io::Body& b = scene.bodies[i];
+    before[b.name] = {b.position, b.orientation};
+    const auto it = seriesIndex.find(b.name);
+    if (it == seriesIndex.end()) {
+      after[b.name] = before[b.name];
+      continue;
+    }
+    const std::size_t s = it->second;
+    const Eigen::Quaterniond p0(q0[4 * s], q0[4 * s + 1], q0[4 * s + 2], q0[4 * s + 3]);
+    const Eigen::Quaterniond p1(q1[4 * s], q1[4 * s + 1], q1[4 * s + 2], q1[4 * s + 3]);
+    after[b.name] = {Eigen::Vector3d(pos[3 * s], pos[3 * s + 1], pos[3 * s + 2]),
+                     (p1 * p0.conjugate() * b.orientation).normalized()};
+  }
+  for (std::size_t k = 0; k < nu; ++k) {
+    const std::string& name = scene.bodies[units[k].sceneIndex].name;
+    xBefore[k] = before[name].position;
+    qBefore[k] = before[name].orientation;
+    xAfter[k] = after[name].position;
+    qAfter[k] = after[name].orientation;
+    dn[k] = units[k].dn;
+  }
+  double dnMean = 0.0;
+  for (double d : dn) dnMean += d / static_cast<double>(nu);
+
+  // The slope frame: the scene's slope, else a plane through the units, else level.
+  analysis::SlopeFrame frame;
+  bool frameFromSlope = false;
+  if (!scene.statics.slopes.empty()) {
+    const io::StaticSlope& s = scene.statics.slopes.front();
+    frame = analysis::SlopeFrame::fromTanAlpha(s.tanAlpha, Eigen::Vector3d(s.origin.x(), 0.0, s.origin.y()));
+    frameFromSlope = true;
+  } else {
+    try {
+      frame = analysis::fitSlopeFrame(xBefore);
+    } catch (const core::InputError&) {
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& p : xBefore) mean += p / static_cast<double>(nu);
+      frame = analysis::SlopeFrame::fromTanAlpha(0.0, mean);
+    }
+  }
+  analysis::DisplacementSettings dsettings;
+  const analysis::PackDisplacement disp =
+      analysis::measureDisplacement(xBefore, xAfter, qBefore, qAfter, dn, frame, dsettings);
+
+  // P2 and porosity before and after, from the pack analysis (not for units without an axis).
+  AnalyseSettings asettings;
+  asettings.unitPrefix = prefix;
+  asettings.axis = o.axis;
+  std::optional<PackReport> packBefore, packAfter;
+  std::string packNote;
+  try {
+    packBefore = analysePack(scene, asettings);
+    packAfter = analysePack(scene, asettings, &after);
+  } catch (const core::InputError& e) {
+    packNote = e.what();
+    std::cout << fmt::format("P2 and porosity not computed: {}\n", packNote);
+  }
+
+  // Time series of the displacements, streamed in blocks of records.
+  const fs::path folder = o.output.empty() ? runDir / "report" : fs::absolute(o.output);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) core::failInput(folder.string(), "cannot create the report folder: {}", ec.message());
+  std::string timeseries = "time_s,total_displacement_m,mean_displacement_dn,max_displacement_dn,moved_0.2dn,"
+                           "moved_0.5dn,moved_1dn\n";
+  {
+    std::vector<double> block;
+    constexpr std::size_t kBlock = 64; // bodies.nc chunks hold 64 records
+    for (std::size_t k0 = 0; k0 < series.records(); k0 += kBlock) {
+      const std::size_t n = std::min(kBlock, series.records() - k0);
+      series.positions(k0, n, block);
+      const std::size_t nb = series.names().size();
+      for (std::size_t r = 0; r < n; ++r) {
+        double total = 0.0, mean = 0.0, maxDn = 0.0;
+        std::size_t moved[3] = {0, 0, 0};
+        for (std::size_t k = 0; k < nu; ++k) {
+          const double* x = &block[(r * nb + units[k].seriesIndex) * 3];
+          const double d = (Eigen::Vector3d(x[0], x[1], x[2]) - xBefore[k]).norm();
+          total += d;
+          mean += d / dn[k] / static_cast<double>(nu);
+          maxDn = std::max(maxDn, d / dn[k]);
+          moved[0] += d > 0.2 * dn[k];
+          moved[1] += d > 0.5 * dn[k];
+          moved[2] += d > 1.0 * dn[k];
+        }
+        timeseries += fmt::format("{},{},{},{},{},{},{}\n", series.times()[k0 + r], total, mean, maxDn, moved[0],
+                                  moved[1], moved[2]);
+      }
+    }
+  }
+
+  // units.csv
+  std::size_t displaced = 0;
+  double yMin = std::numeric_limits<double>::infinity(), yMax = -yMin;
+  std::string unitsCsv = "unit,x0,y0,z0,x,y,z,dx,dy,dz,disp_s,disp_t,disp_n,s0,t0,displacement_m,displacement_dn,"
+                         "rotation_deg,rocking,dn,displaced\n";
+  for (std::size_t k = 0; k < nu; ++k) {
+    const auto& u = disp.units[k];
+    const bool isDisplaced = u.distanceDn > o.displacedDn;
+    displaced += isDisplaced;
+    yMin = std::min(yMin, xBefore[k].y());
+    yMax = std::max(yMax, xBefore[k].y());
+    const Eigen::Vector3d l0 = frame.toLocal(xBefore[k]);
+    unitsCsv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                            scene.bodies[units[k].sceneIndex].name, xBefore[k].x(), xBefore[k].y(), xBefore[k].z(),
+                            xAfter[k].x(), xAfter[k].y(), xAfter[k].z(), u.displacement.x(), u.displacement.y(),
+                            u.displacement.z(), u.local.x(), u.local.y(), u.local.z(), l0.x(), l0.y(), u.distance,
+                            u.distanceDn, u.rotation * kDeg, u.rocking ? 1 : 0, dn[k], isDisplaced ? 1 : 0);
+  }
+  // The trunk width the units cover: their spread along y plus one Dn (each unit covers a strip).
+  const double width = yMax - yMin + dnMean;
+  double porosity = o.porosity;
+  std::string porositySource = "--porosity";
+  if (!std::isfinite(porosity)) {
+    // The pack's porosity is taken when it is one of an armour layer (0.25-0.75; 0.35-0.65 are
+    // usual); a sparse test scene's hull measure is not.
+    if (packBefore && packBefore->thickness && packBefore->porosity >= 0.25 && packBefore->porosity <= 0.75) {
+      porosity = packBefore->porosity;
+      porositySource = "the pack before the storm (armour analyse)";
+    } else {
+      porosity = 0.4;
+      porositySource = packBefore && packBefore->thickness
+                           ? fmt::format("default 0.4 (the pack's, {:.3g}, is not one of an armour layer; give "
+                                         "--porosity)",
+                                         packBefore->porosity)
+                           : std::string("default 0.4 (the pack's could not be measured; give --porosity)");
+    }
+  }
+  const analysis::CountedDamage counted = analysis::countedDamage(displaced, dnMean, width, porosity);
+
+  // The storm.
+  fs::path stormPath = o.storm;
+  if (stormPath.empty() && scene.hydro.enabled && scene.hydro.model == hydro::HydroModel::Storm)
+    stormPath = scene.hydro.storm.file;
+  const double runStart = series.times().front(), runEnd = series.times().back();
+  const double runDuration = runEnd - runStart;
+  Eigen::Vector3d unitsMean = Eigen::Vector3d::Zero();
+  for (const auto& p : xBefore) unitsMean += p / static_cast<double>(nu);
+  const StormSummary st = summariseStorm(stormPath, scene, o, unitsMean, runStart, runEnd);
+  // Wave statistics of fewer than 3 waves say little (a short file, mostly ramp-up): then the
+  // provenance's values, and Hm0 as the last resort.
+  constexpr std::size_t kMinWaves = 3;
+  const bool measured = st.waves.waves >= kMinWaves;
+  double hs = o.hs, tm = o.tm, tp = o.tp;
+  std::string hsSource = "--hs";
+  if (!std::isfinite(hs)) {
+    if (measured) {
+      hs = st.waves.hs;
+      hsSource = "H1/3 of eta at the gauge";
+    } else if (std::isfinite(st.provHs)) {
+      hs = st.provHs;
+      hsSource = fmt::format("the storm file's provenance ({} waves at the gauge)", st.waves.waves);
+    } else {
+      hs = st.waves.hm0;
+      hsSource = fmt::format("Hm0 of eta at the gauge ({} waves)", st.waves.waves);
+    }
+  }
+  if (!std::isfinite(tm) && measured) tm = st.waves.tm;
+  if (!std::isfinite(tp)) tp = measured || !std::isfinite(st.provTp) ? st.waves.tp : st.provTp;
+
+  // Design formulas.
+  const io::Body& first = scene.bodies[units.front().sceneIndex];
+  const io::ShapeSpec& shape = scene.shapes[first.shape];
+  const std::string unitType = shape.source == io::ShapeSource::Generator ? shape.generator : shape.name;
+  const double unitDensity = scene.materials[first.material].density;
+  double cotAlpha = o.cotAlpha;
+  if (!std::isfinite(cotAlpha) && frameFromSlope && frame.tanAlpha() > 0.0) cotAlpha = 1.0 / frame.tanAlpha();
+  double delta = kNaN, ns = kNaN, steepness = kNaN, xi = kNaN, nWaves = kNaN;
+  try {
+    delta = analysis::relativeDensity(unitDensity, st.waterDensity);
+  } catch (const core::InputError&) {
+  }
+  if (std::isfinite(hs) && std::isfinite(delta)) ns = analysis::stabilityNumber(hs, delta, dnMean);
+  if (std::isfinite(hs) && std::isfinite(tm)) steepness = analysis::waveSteepness(hs, tm);
+  if (std::isfinite(steepness) && std::isfinite(cotAlpha)) xi = analysis::iribarren(1.0 / cotAlpha, steepness);
+  if (std::isfinite(tm)) nWaves = std::max(1.0, runDuration / tm);
+  DesignInputs design;
+  design.unitType = unitType;
+  design.ns = ns;
+  design.cotAlpha = cotAlpha;
+  design.steepness = steepness;
+  design.xi = xi;
+  design.waves = nWaves;
+  design.tm = tm;
+  design.duration = runDuration;
+  design.permeability = o.permeability;
+  design.breaking = o.breaking;
+  const std::vector<FormulaResult> formulas = designFormulas(design);
+
+  // summary.json
+  std::string j = "{\n";
+  j += fmt::format(
+      "  \"run\": {},\n  \"scene\": {},\n  \"records\": {},\n  \"run_start_s\": {},\n  \"run_end_s\": {},\n",
+      jsonString(runDir.string()), jsonString(fs::absolute(scenePath).string()), series.records(), runStart, runEnd);
+  j += fmt::format("  \"units\": {},\n  \"unit_type\": {},\n  \"dn_mean_m\": {},\n  \"unit_density_kg_m3\": {},\n", nu,
+                   jsonString(unitType), dnMean, unitDensity);
+  j += fmt::format("  \"slope_cot\": {},\n  \"slope_frame\": {},\n", jsonNumber(cotAlpha),
+                   jsonString(frameFromSlope ? "scene slope" : "fitted to the units"));
+  std::string counts;
+  for (std::size_t k = 0; k < disp.thresholdsDn.size(); ++k)
+    counts += fmt::format("{}\"{}\": {}", k ? ", " : "", disp.thresholdsDn[k], disp.movedCounts[k]);
+  j += "  \"damage\": {\n";
+  j += fmt::format("    \"moved_more_than_dn\": {{{}}},\n    \"rocking_units\": {},\n    \"rocking_angle_deg\": {},\n",
+                   counts, disp.rockingCount, dsettings.rockingAngle * kDeg);
+  j += fmt::format("    \"displaced_threshold_dn\": {},\n    \"displaced_units\": {},\n    \"trunk_width_m\": {},\n",
+                   o.displacedDn, displaced, width);
+  j += fmt::format("    \"porosity\": {},\n    \"porosity_source\": {},\n    \"Nod\": {},\n    \"S\": {},\n", porosity,
+                   jsonString(porositySource), counted.nod, counted.damage);
+  j += fmt::format("    \"delta_rms_m\": {},\n    \"delta_rms_dn\": {},\n    \"mean_displacement_dn\": {},\n"
+                   "    \"max_displacement_dn\": {},\n    \"max_displacement_unit\": {},\n"
+                   "    \"total_displacement_m\": {},\n    \"max_rotation_deg\": {},\n",
+                   disp.deltaRms, disp.deltaRmsOverDn, disp.meanDn, disp.maxDn,
+                   jsonString(scene.bodies[units[disp.maxUnit].sceneIndex].name), disp.total, disp.maxRotation * kDeg);
+  j += fmt::format("    \"D_m\": {},\n    \"D_z_m\": {},\n    \"D_z_prime_m\": {}\n  }},\n", jsonNumber(disp.D),
+                   jsonNumber(disp.x.mean), jsonNumber(disp.x.meanAbsolute));
+  j += "  \"pack\": {\n";
+  j += fmt::format(
+      "    \"axis\": {},\n    \"p2_before\": {},\n    \"p2_after\": {},\n    \"p2_q_before\": {},\n"
+      "    \"p2_q_after\": {},\n    \"porosity_before\": {},\n    \"porosity_after\": {},\n    \"note\": {}\n  }},\n",
+      jsonString(o.axis), jsonNumber(packBefore ? packBefore->p2Mean.p2 : kNaN),
+      jsonNumber(packAfter ? packAfter->p2Mean.p2 : kNaN), jsonNumber(packBefore ? packBefore->p2Q.p2 : kNaN),
+      jsonNumber(packAfter ? packAfter->p2Q.p2 : kNaN),
+      jsonNumber(packBefore && packBefore->thickness ? packBefore->porosity : kNaN),
+      jsonNumber(packAfter && packAfter->thickness ? packAfter->porosity : kNaN), jsonString(packNote));
+  j += "  \"storm\": {\n";
+  j += fmt::format(
+      "    \"file\": {},\n    \"title\": {},\n    \"records\": {},\n    \"start_s\": {},\n    \"end_s\": {},\n"
+      "    \"time_offset_s\": {},\n    \"water_density_kg_m3\": {},\n    \"still_water_level_m\": {},\n",
+      jsonString(stormPath.string()), jsonString(st.title), st.records, jsonNumber(st.start), jsonNumber(st.end),
+      st.offset, st.waterDensity, jsonNumber(st.swl));
+  j += fmt::format(
+      "    \"gauge_x_m\": {},\n    \"H1_3_m\": {},\n    \"Hmax_m\": {},\n    \"Hm0_m\": {},\n    \"Tm_s\": {},\n"
+      "    \"Tp_s\": {},\n    \"waves_at_gauge\": {},\n    \"provenance_Hs_m\": {},\n    \"provenance_Tp_s\": {},\n",
+      jsonNumber(st.gaugeX), jsonNumber(st.waves.hs), jsonNumber(st.waves.hmax), jsonNumber(st.waves.hm0),
+      jsonNumber(st.waves.tm), jsonNumber(st.waves.tp), st.waves.waves, jsonNumber(st.provHs), jsonNumber(st.provTp));
+  j += fmt::format("    \"voxel_x_m\": {},\n    \"voxel_z_m\": {},\n    \"Hs_m\": {},\n    \"Hs_source\": {},\n"
+                   "    \"Tm_used_s\": {},\n    \"Tp_used_s\": {}\n  }},\n",
+                   jsonNumber(st.voxelX), jsonNumber(st.voxelZ), jsonNumber(hs), jsonString(hsSource), jsonNumber(tm),
+                   jsonNumber(tp));
+  j += "  \"design\": {\n";
+  j += fmt::format(
+      "    \"delta\": {},\n    \"Ns\": {},\n    \"s_om\": {},\n    \"xi_m\": {},\n    \"waves_in_run\": {},\n"
+      "    \"permeability\": {},\n    \"formulas\": [\n",
+      jsonNumber(delta), jsonNumber(ns), jsonNumber(steepness), jsonNumber(xi), jsonNumber(nWaves), o.permeability);
+  for (std::size_t f = 0; f < formulas.size(); ++f) {
+    const FormulaResult& r = formulas[f];
+    std::string values;
+    for (std::size_t v = 0; v < r.values.size(); ++v)
+      values += fmt::format("{}\"{}\": {}", v ? ", " : "", r.values[v].first, jsonNumber(r.values[v].second));
+    j += fmt::format("      {{\"name\": {}, \"source\": {}, \"applicable\": {}, \"values\": {{{}}}, \"note\": {}}}{}\n",
+                     jsonString(r.name), jsonString(r.source), r.applicable ? "true" : "false", values,
+                     jsonString(r.note), f + 1 < formulas.size() ? "," : "");
+  }
+  j += "    ]\n  }\n}\n";
+
+  core::writeFileAtomically(folder / "units.csv", [&](std::ostream& out) { out << unitsCsv; });
+  core::writeFileAtomically(folder / "timeseries.csv", [&](std::ostream& out) { out << timeseries; });
+  core::writeFileAtomically(folder / "storm.csv", [&](std::ostream& out) { out << st.csv; });
+  core::writeFileAtomically(folder / "summary.json", [&](std::ostream& out) { out << j; });
+
+  std::cout << fmt::format("damage report of {} ({} units of {}, Dn {:.3g} m, t = {:.6g} .. {:.6g} s)\n",
+                           runDir.string(), nu, unitType, dnMean, runStart, runEnd);
+  for (std::size_t k = 0; k < disp.thresholdsDn.size(); ++k)
+    std::cout << fmt::format("  moved > {:g} Dn    {} units\n", disp.thresholdsDn[k], disp.movedCounts[k]);
+  std::cout << fmt::format("  rocking         {} units (rotation > {:g} deg)\n", disp.rockingCount,
+                           dsettings.rockingAngle * kDeg);
+  std::cout << fmt::format("  Nod {:.3g}, S {:.3g} (> {:g} Dn displaced, width {:.3g} m, porosity {:.3g})\n",
+                           counted.nod, counted.damage, o.displacedDn, width, porosity);
+  std::cout << fmt::format("  delta_rms {:.4g} m, max {:.3g} Dn, total {:.4g} m\n", disp.deltaRms, disp.maxDn,
+                           disp.total);
+  if (std::isfinite(hs))
+    std::cout << fmt::format("  storm Hs {:.3g} m ({}), Tm {:.3g} s, Tp {:.3g} s, Ns {:.3g}\n", hs, hsSource, tm, tp,
+                             ns);
+  for (const FormulaResult& r : formulas) {
+    std::string values;
+    for (const auto& [k, v] : r.values) values += fmt::format(" {}={:.4g}", k, v);
+    std::cout << fmt::format("  {}:{} {}\n", r.name, values, r.note);
+  }
+  std::cout << std::flush; // before the script's own output
+  if (!o.noPlots) runPython(folder, runDir);
+  std::cout << fmt::format("report: {}/summary.json, units.csv, timeseries.csv, storm.csv{}\n", folder.string(),
+                           o.noPlots ? "" : ", index.html");
+}
+
+} // namespace
+
+void addReportCommands(CLI::App& app, GlobalOptions& /*global*/) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* cmd = app.add_subcommand("report", "damage report of a storm run: displacements, rocking, Nod and S, P2, the "
+                                           "storm's Hs and Tp, and the design formulas beside them (docs/report.md)");
+  cmd->add_option("run", o->run, "the run's output folder (with bodies.nc)")->required();
+  cmd->add_option("--scene", o->scene, "the run's scene (default: the one bodies.nc's history names)");
+  cmd->add_option("--storm", o->storm, "storm file (default: the scene's hydro storm file)");
+  cmd->add_option("--output", o->output, "report folder (default: RUN_DIR/report)");
+  cmd->add_option("--units", o->prefix,
+                  "units are the movable bodies whose names start with this (default: the "
+                  "hydro bodies)");
+  cmd->add_option("--axis", o->axis, "unit axis for P2")->capture_default_str();
+  cmd->add_option("--voxel", o->voxel,
+                  "X Z: the storm voxel whose pressure history to show (m; default: a submerged "
+                  "voxel with data near the units)")
+      ->expected(2);
+  cmd->add_option("--gauge", o->gaugeX, "x of the eta gauge for Hs, Tm, Tp (m; default: the slope's toe)");
+  cmd->add_option("--storm-window", o->stormWindow, "storm records in storm.csv: run (the replayed ones) or all")
+      ->capture_default_str();
+  cmd->add_option("--hs", o->hs, "Hs for the design formulas instead of the gauge's (m)");
+  cmd->add_option("--tm", o->tm, "mean period instead of the gauge's (s)");
+  cmd->add_option("--tp", o->tp, "peak period instead of the gauge's (s)");
+  cmd->add_option("--cot", o->cotAlpha, "slope cot alpha (default: the scene's slope)");
+  cmd->add_option("--permeability", o->permeability, "van der Meer's notional permeability P")->capture_default_str();
+  cmd->add_option("--porosity", o->porosity, "armour layer porosity for S = Nod / (1 - p) (default: the pack's)");
+  cmd->add_option("--displaced-dn", o->displacedDn, "a unit moved more than this many Dn counts as displaced")
+      ->capture_default_str();
+  cmd->add_flag("--breaking", o->breaking, "use Hudson's K_D for breaking waves");
+  cmd->add_flag("--no-plots", o->noPlots, "write the tables only (no utilities/report.py)");
+  cmd->callback([o] { report(*o); });
+}
 
 } // namespace armour::app
