@@ -40,6 +40,10 @@ void placeScene(const PlaceOptions& o) {
     core::failInput(o.file, "no `placement:` block; `armour place` needs one (docs/placement.md has examples), or use "
                             "`armour run` for a scene without one");
   const fs::path scenePath = o.output.empty() ? scene.baseDir / scene.placement.output : fs::absolute(o.output);
+  if (fs::is_directory(scenePath))
+    core::failInput(o.output.empty() ? "placement.output" : "--output",
+                    "{} is a folder; give the path of the placed scene file (a .yaml), e.g. {}", scenePath.string(),
+                    (scenePath / "placed.yaml").string());
   std::cout << fmt::format("placing {} units of {} ({}), {} threads\n",
                            scene.placement.method == placement::Method::Crane ? "crane-lowered" : "grid-dropped",
                            scene.placement.shape, scene.sourceName, omp_get_max_threads());

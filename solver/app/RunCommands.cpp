@@ -7,6 +7,7 @@
 #include "core/Log.hpp"
 #include "hydro/HydroStages.hpp"
 #include "io/SceneReader.hpp"
+#include "storm/StormFile.hpp"
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/RunOutputs.hpp"
 #include "simulation/SceneBuilder.hpp"
@@ -41,6 +42,9 @@ struct RunOptions {
   int threads = 0;       ///< OpenMP threads, 0 = OpenMP's default
   std::string output;    ///< overrides the scene's output folder when not empty
   bool restart = false;  ///< continue from <output>/checkpoint.nc
+  // `armour storm`: the storm replayed on the scene (empty for `armour run`).
+  std::string stormFile;          ///< the storm file (netCDF, docs/storm-file.md)
+  std::optional<double> timeOffset; ///< storm time at simulation time 0, instead of the scene's (unit: s)
 };
 
 /// Exit code of a run stopped by SIGINT or SIGTERM (the shell's 128 + SIGINT).
@@ -208,6 +212,36 @@ void checkScene(const std::string& path) {
   std::cout << fmt::format("check: {} is valid\n", path);
 }
 
+/// `armour storm`: put the storm file on the scene's hydro settings (the scene's own `hydro:`
+/// options, or the defaults without one) and, without --duration, run to the end of the storm.
+void applyStorm(io::Scene& scene, const RunOptions& o) {
+  hydro::HydroSettings& h = scene.hydro;
+  if (h.enabled && h.model != hydro::HydroModel::Storm)
+    core::failInput(scene.sourceName, "hydro.model is not `storm`: `armour storm` replays a storm file; set hydro.model: "
+                                      "storm (or remove the hydro block for the defaults), or use `armour run`");
+  if (!h.enabled) {
+    h = hydro::HydroSettings{};
+    h.enabled = true;
+    h.model = hydro::HydroModel::Storm;
+    core::logger("run")->info("{} has no hydro: block: the storm's loads with the default settings "
+                              "(docs/scene-file.md, Hydrodynamic loads)", scene.sourceName);
+  }
+  h.storm.file = fs::absolute(o.stormFile).string();
+  if (o.timeOffset) {
+    if (!(*o.timeOffset >= 0.0) || !std::isfinite(*o.timeOffset))
+      core::failInput("--time-offset", "{} s: give the storm time (s, >= 0) at which the run starts", *o.timeOffset);
+    h.storm.timeOffset = *o.timeOffset;
+  }
+  if (!o.durationGiven) {
+    const storm::StormReader reader(h.storm.file);
+    const double left = reader.times().back() - h.storm.timeOffset;
+    if (!(left > 0.0))
+      core::failInput("--time-offset", "{} s is at or after the end of the storm file {} ({} s); give an earlier offset",
+                      h.storm.timeOffset, h.storm.file, reader.times().back());
+    scene.duration = left;
+  }
+}
+
 void runScene(const RunOptions& o) {
   if (o.threads < 0) {
     core::failInput("--threads", "{}: give a positive number of threads, or 0 for OpenMP's default", o.threads);
@@ -222,6 +256,7 @@ void runScene(const RunOptions& o) {
     }
     scene.duration = o.duration;
   }
+  if (!o.stormFile.empty()) applyStorm(scene, o);
   if (!o.output.empty()) {
     scene.output.folder = fs::absolute(o.output);
   }
@@ -423,6 +458,25 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   run->callback([o, duration] {
     o->durationGiven = duration->count() > 0;
     runScene(*o);
+  });
+
+  auto s = std::make_shared<RunOptions>();
+  auto* storm = app.add_subcommand("storm", "replay a storm file on a placed scene (its hydro: options, or the "
+                                            "defaults), to the end of the storm; checkpoints and --restart as run");
+  storm->add_option("scene", s->scene, "placed scene file (.yaml), e.g. from armour place")->required();
+  storm->add_option("--storm", s->stormFile, "storm file (netCDF-4, docs/storm-file.md): from foam-proxy, the "
+                                             "armourSampler function object or armour storm-file synth")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* offset = storm->add_option("--time-offset", "storm time at simulation time 0 (s), instead of the scene's");
+  auto* stormDuration = storm->add_option("--duration", s->duration, "simulated time (s); default: to the storm's end");
+  storm->add_option("--threads", s->threads, "OpenMP threads (0 = OpenMP's default)")->capture_default_str();
+  storm->add_option("-o,--output", s->output, "output folder, instead of the scene's output.folder");
+  storm->add_flag("--restart", s->restart, "continue from the output folder's checkpoint.nc (same scene and storm)");
+  storm->callback([s, offset, stormDuration] {
+    s->durationGiven = stormDuration->count() > 0;
+    if (offset->count() > 0) s->timeOffset = offset->as<double>();
+    runScene(*s);
   });
 }
 

@@ -195,9 +195,19 @@ struct TimeStepSettings {
   double safety = 0.2;             ///< fraction of the stability limit used when automatic (unit: -)
 };
 
-/// Contact resolution, relative to each body's nominal diameter Dn = V^(1/3). The defaults are
-/// those of the contact stage (contact::SurfaceSampleSettings, contact::LevelSetSettings).
+/// Which contact model the narrow phase uses (docs/theory.md, "Contact law" and "FDEM potential contact").
+enum class ContactModel { LevelSet, Fdem };
+
+/// Contact model and resolution, relative to each body's nominal diameter Dn = V^(1/3). The
+/// defaults are those of the contact stage (contact::SurfaceSampleSettings, contact::LevelSetSettings,
+/// contact::FdemMeshSettings).
 struct ContactSettings {
+  /// levelset: surface samples against level sets (the default: 3 to 5 times cheaper per step
+  /// once bodies rest on bodies, no reach limit; docs/fidelity.md); fdem: Munjiza's potential over
+  /// tetrahedral contact elements.
+  ContactModel model = ContactModel::LevelSet;
+  /// fdem: tetrahedra per body before the deep ones are dropped (unit: -); seed 002: ~2500 per Core-Loc.
+  std::size_t fdemElementsPerUnit = 2500;
   double sampleSpacing = 0.1;      ///< spacing of surface sample points / Dn (unit: -)
   double levelSetCellsPerDn = 24.0; ///< level-set grid cells per Dn (unit: -)
   /// Guard rail: a penetration deeper than this fraction of Dn stops the run, naming the bodies

@@ -575,7 +575,9 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
                        "placement"};
-const KeyList kContactKeys{"sample_spacing", "level_set_cells_per_dn", "max_overlap"};
+const KeyList kContactKeys{"model", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem"};
+const KeyList kContactModels{"levelset", "fdem"};
+const KeyList kFdemKeys{"elements_per_unit"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
                           "contacts"};
 const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wake_load_fraction"};
@@ -606,6 +608,14 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.contact.levelSetCellsPerDn =
       c.number("level_set_cells_per_dn", {"cells per Dn", kPositive, "24"}, scene.contact.levelSetCellsPerDn);
   scene.contact.maxOverlap = c.number("max_overlap", {"Dn", kFraction, "0.25"}, scene.contact.maxOverlap);
+  scene.contact.model = static_cast<ContactModel>(c.choice("model", kContactModels, 0));
+  const Block fd(ctx, c.has("fdem") ? c.get("fdem") : YAML::Node(), c.path("fdem"), kFdemKeys);
+  if (c.has("fdem") && scene.contact.model != ContactModel::Fdem)
+    c.warnValue("fdem", "applies to contact.model: fdem only; the level-set model ignores it");
+  scene.contact.fdemElementsPerUnit = fd.integer("elements_per_unit", 24, "tetrahedra per body, e.g. 2500 (seed 002)",
+                                                 scene.contact.fdemElementsPerUnit);
+  if (scene.contact.fdemElementsPerUnit > 2'000'000)
+    fd.failValue("elements_per_unit", "at most 2000000 tetrahedra per body; 2500 (seed 002) resolves a Core-Loc");
 
   const Block o(ctx, top.has("output") ? top.get("output") : YAML::Node(), "output", kOutputKeys);
   const std::string folder = o.text("folder", "a folder path, relative to the scene file's folder", scene.name + "-out");
@@ -720,12 +730,13 @@ void readHydro(const Block& top, Scene& scene) {
 // ---------------------------------------------------------------------------------------------
 
 const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix", "slope", "method", "grid",
-                             "orientation", "crane", "settle", "rocks", "clearance", "seed", "output"};
+                             "orientation", "crane", "settle", "nest", "lowering", "rocks", "clearance", "seed", "output"};
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
 const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries"};
 const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
 const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
+const KeyList kNestKeys{"moves", "shift", "tilt_deg", "max_drift"};
 const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
 
 void readPlacement(const Block& top, Scene& scene) {
@@ -743,6 +754,7 @@ void readPlacement(const Block& top, Scene& scene) {
   out.namePrefix = p.text("name_prefix", "a name prefix", std::string("unit"));
   out.slope = p.text("slope", "the name of the static slope the grid lies on", std::string());
   out.method = static_cast<placement::Method>(p.choice("method", {"crane", "grid"}, 0));
+  out.lowering = static_cast<placement::Lowering>(p.choice("lowering", {"vertical", "slope_normal"}, 0));
   out.seed = p.integer("seed", 0, "seed of orientations, jitter and rocks", scene.seed);
   out.clearance = p.number("clearance", {"Dn", kNonNegative, "0.002: the gap a lowered unit stops at"}, out.clearance);
   out.output = p.text("output", "the placed scene's file name, beside this file", scene.name + "-placed.yaml");
@@ -817,6 +829,17 @@ void readPlacement(const Block& top, Scene& scene) {
   ss.maxTime = st.number("max_time", {"s", kPositive, "20"}, ss.maxTime);
   if (ss.minTime > ss.maxTime) st.failValue("min_time", fmt::format("longer than max_time = {} s", ss.maxTime));
   if (cs.minTime > cs.maxTime) c.failValue("min_time", fmt::format("longer than max_time = {} s", cs.maxTime));
+
+  if (p.has("nest")) {
+    const Block n(ctx, p.get("nest"), "placement.nest", kNestKeys);
+    placement::NestSettings& ns = out.nest;
+    ns.enabled = true;
+    ns.moves = static_cast<int>(n.integer("moves", 1, "failed random moves in a row that end the slide", 24));
+    ns.shift = n.number("shift", {"Dn", kPositive, "0.2"}, ns.shift);
+    ns.tiltDeg = n.number("tilt_deg", {"deg", kNonNegative, "10"}, ns.tiltDeg);
+    ns.maxDrift = n.number("max_drift", {"Dn", kPositive, "0.75"}, ns.maxDrift);
+    if (ns.tiltDeg > 90.0) n.failValue("tilt_deg", "more than 90 deg; a move tilts the unit by at most this angle, give 0 to 90");
+  }
 
   if (p.has("rocks")) {
     const Block r(ctx, p.get("rocks"), "placement.rocks", kRockKeys);

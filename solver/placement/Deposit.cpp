@@ -237,7 +237,8 @@ bool Deposit::lower(Placed& u, double step, double clearance, double startZ) con
 void Deposit::add(const Placed& p) { insert(p); }
 
 bool Deposit::slideDown(Placed& u, int moves, double shift, double tilt, double step, double clearance,
-                        std::mt19937_64& rng) const {
+                        std::mt19937_64& rng, double maxDrift, double lift) const {
+  const Eigen::Vector2d start = u.x.head<2>();
   const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   bool movedAny = false;
   for (int failed = 0; failed < moves;) {
@@ -248,7 +249,7 @@ bool Deposit::slideDown(Placed& u, int moves, double shift, double tilt, double 
     const Vec3 axis(rc * std::cos(phi), rc * std::sin(phi), zc);
     v.R = Eigen::AngleAxisd(tilt * unit(), axis).toRotationMatrix() * u.R;
     v.x += Vec3(shift * (2.0 * unit() - 1.0), shift * (2.0 * unit() - 1.0), 0.0);
-    if (lower(v, step, clearance) && v.x.z() < u.x.z() - 1e-3 * step) {
+    if ((v.x.head<2>() - start).norm() <= maxDrift && lower(v, step, clearance, u.x.z() + lift) && v.x.z() < u.x.z() - 1e-3 * step) {
       u = v;
       movedAny = true;
       failed = 0;

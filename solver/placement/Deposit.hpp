@@ -74,9 +74,12 @@ public:
   /// Slide and tilt downhill: random moves (a shift up to `shift` m on both plan axes, a tilt up
   /// to `tilt` rad about a random axis), each lowered again, are kept when they end lower, until
   /// `moves` fail in a row. A unit stuck on a neighbour's corner slips into the hole beside it, as
-  /// it would when poured. True if u moved.
+  /// it would when poured. Moves that take the centroid farther than `maxDrift` (m, in plan) from
+  /// where it started are refused. Each move is lowered from `lift` (m) above the current height
+  /// (infinity: from above everything), and refused if it overlaps there: a finite lift is much
+  /// cheaper when the unit sits low among tall neighbours. True if u moved.
   bool slideDown(Placed& u, int moves, double shift, double tilt, double step, double clearance,
-                 std::mt19937_64& rng) const;
+                 std::mt19937_64& rng, double maxDrift = kAbove, double lift = kAbove) const;
 
   /// Keep u (after lower/slideDown) as an obstacle for the next ones.
   void add(const Placed& u);

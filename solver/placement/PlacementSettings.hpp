@@ -93,6 +93,25 @@ struct SettleSettings {
   double maxTime = 30.0;            ///< at most (unit: s); units still moving are reported
 };
 
+/// Nesting (both methods): after its lowering, each unit is slid and tilted geometrically into the
+/// lowest nearby position it can reach without overlap (Deposit::slideDown), within maxDrift of its
+/// grid point. It stands in for a crane operator working a unit into the hole between the units
+/// below, so a dense staggered grid (whose rows overlap in plan) starts nested instead of
+/// stacked: a stacked grid slumps as a whole when released on a steep face.
+/// The direction a unit is lowered along to its first touch.
+enum class Lowering {
+  Vertical,    ///< along -z, as a crane does: a unit lands h tan(alpha) up-slope of its grid point on the face
+  SlopeNormal, ///< along the slope's inward normal: the unit lands at its grid point's up-slope distance
+};
+
+struct NestSettings {
+  bool enabled = false;             ///< the `nest:` block is given
+  int moves = 24;                   ///< failed random moves in a row that end the slide (unit: -)
+  double shift = 0.2;               ///< largest plan shift of one move (unit: Dn)
+  double tiltDeg = 10.0;            ///< largest tilt of one move (unit: deg)
+  double maxDrift = 0.75;           ///< farthest the centroid may go from its grid point, in plan (unit: Dn)
+};
+
 struct PlacementSettings {
   bool enabled = false;             ///< the scene has a `placement:` block
   std::string shape;                ///< shape name (from `shapes:` or a generator name)
@@ -106,6 +125,8 @@ struct PlacementSettings {
   CraneSettings crane;
   RockSettings rocks;
   SettleSettings settle;
+  NestSettings nest;
+  Lowering lowering = Lowering::Vertical;
   double clearance = 0.002;         ///< gap left between a lowered unit and what it lands on (unit: Dn)
   std::uint64_t seed = 1;           ///< orientations, jitter and rocks (unit: -)
   std::string output = "placed.yaml"; ///< the placed scene, in the output folder

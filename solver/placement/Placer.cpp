@@ -326,15 +326,30 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
               rs.dn50, rs.grading, x1 - x0, y1 - y0);
   }
 
-  // 2. The units.
+  // 2. The units, lowered vertically (world frame) or along the slope normal (the deposit works
+  // in the slope frame, so a unit lands on the face at its grid point's up-slope distance s
+  // instead of h tan(alpha) further up, h its centroid's height above the face).
   const std::size_t firstUnitBody = world.bodies().size();
+  const bool alongNormal = ps.lowering == Lowering::SlopeNormal;
+  if (alongNormal && slope == nullptr)
+    core::failInput(scene.sourceName, "placement.lowering = slope_normal needs a slope; add one or use vertical");
+  const Quat unitFrame = alongNormal ? slopeFrame(slope->tanAlpha) : Quat::Identity(); // deposit -> world
+  const Quat toUnitFrame = unitFrame.conjugate();
   // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
   const Deposit staticDeposit =
-      makeDeposit(result.built, Quat::Identity(), 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
+      makeDeposit(result.built, toUnitFrame, 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
   const auto rebuildDeposit = [&]() {
     Deposit d = staticDeposit;
-    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(d, world, b, Quat::Identity());
+    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(d, world, b, toUnitFrame);
     return d;
+  };
+  // Where unit i starts its descent, in the deposit frame: its grid point (on the face, or at the
+  // grid file's height) and the height to lower from.
+  const auto descentStart = [&](const GridPoint& g) -> std::pair<Vec3, double> {
+    if (!alongNormal) return {Vec3(g.plan.x(), g.plan.y(), 0.0), g.startZ ? *g.startZ : Deposit::kAbove};
+    const double faceZ = slope->origin.y() + std::max(0.0, g.plan.x() - slope->origin.x()) * slope->tanAlpha;
+    const Vec3 p = toUnitFrame * Vec3(g.plan.x(), g.plan.y(), g.startZ ? *g.startZ : faceZ);
+    return {Vec3(p.x(), p.y(), 0.0), g.startZ ? p.z() : Deposit::kAbove};
   };
   Deposit deposit = rebuildDeposit();
   const int total = static_cast<int>(grid.size());
@@ -352,10 +367,11 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       Placed u;
       u.shape = &unitModel;
       u.scale = unitScale;
-      u.R = (natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
+      u.R = (toUnitFrame * natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
       u.radius = unitModel.radius * unitScale;
-      u.x = Vec3(g.plan.x(), g.plan.y(), 0.0);
-      if (!deposit.lower(u, step, clearance, g.startZ ? *g.startZ : Deposit::kAbove)) continue;
+      const auto [start, startZ] = descentStart(g);
+      u.x = start;
+      if (!deposit.lower(u, step, clearance, startZ)) continue;
       if (!found || u.x.z() < best.x.z()) {
         best = u;
         bestNatural = natural;
@@ -363,6 +379,14 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       }
     }
     const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
+    if (found && ps.nest.enabled) {
+      // Work the unit into the hole below its grid point; the tilt of the slide turns its
+      // natural frame too (world axes: the deposit is not rotated for the units).
+      const Mat3 before = best.R;
+      deposit.slideDown(best, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
+                        ps.nest.maxDrift * dn, ps.nest.shift * dn);
+      bestNatural = (unitFrame * Quat(Mat3(best.R * before.transpose())) * toUnitFrame * bestNatural).normalized();
+    }
     if (!found)
       core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
                                         "(between the walls, or blocked where it starts); move the point or the walls",
@@ -372,15 +396,15 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     spec.shape = unitShapeId;
     spec.scale = unitScale;
     spec.material = static_cast<simulation::MaterialId>(unitMaterial);
-    spec.position = best.x;
+    spec.position = unitFrame * best.x;
     spec.orientation = bestNatural;
     UnitRecord rec;
     rec.name = name;
-    rec.gridPoint = best.x;
+    rec.gridPoint = spec.position;
     rec.releaseOrientation = bestNatural;
     rec.releaseTime = world.time();
     if (ps.method == Method::Crane && options.dynamics) {
-      spec.velocity = Vec3(0.0, 0.0, -ps.crane.speed);
+      spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed); // along the lowering direction
       rec.body = world.addBody(spec);
       const auto [t, rest] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime);
       rec.restTime = t;
@@ -448,6 +472,10 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       s1 = std::max(s1, g.s);
     }
     const GridSpacing spacing = gridSpacing(gridSettings, dn, wallWidth, scene.sourceName);
+    // Each row owns a band dy wide about its centre line: the window of n rows is n dy wide, and
+    // a grid whose units stay put has exactly its own packing density there.
+    s0 -= 0.5 * spacing.dy;
+    s1 += 0.5 * spacing.dy;
     sm.windowArea = (s1 - s0) * spacing.width;
     const auto topAbove = [&](BodyId b) {
       const auto& model = world.shape(world.bodyShape(b));

@@ -431,7 +431,9 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     const int first = define("contact_first", NC_UINT, {contactDim}, "1", "friction spring: index of the first body");
     const int second = define("contact_second", NC_UINT, {contactDim}, "1", "friction spring: the other side");
     w.text(ncid, second, "comment", kSecondComment);
-    const int key = define("contact_key", NC_UINT, {contactDim}, "1", "friction spring: surface sample");
+    // levelset: the surface sample; fdem: contactor element << 16 | target element, or the surface
+    // face index against static geometry.
+    const int key = define("contact_key", NC_UINT, {contactDim}, "1", "friction spring: surface sample or element pair");
     w.text(ncid, key, "comment", kKeyComment);
     const int stretch = define("contact_stretch", NC_DOUBLE, {contactDim, vecDim}, "m",
                                "friction spring: tangential stretch, world frame");

@@ -157,6 +157,8 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.levelSet.cellsPerDn = scene.contact.levelSetCellsPerDn;
   w.samples.spacingOverDn = scene.contact.sampleSpacing;
   w.maxOverlapPerDn = scene.contact.maxOverlap;
+  w.contactModel = scene.contact.model == io::ContactModel::Fdem ? ContactModel::Fdem : ContactModel::LevelSet;
+  w.fdem.elementsPerUnit = scene.contact.fdemElementsPerUnit;
   w.sleep.enabled = scene.sleep.enabled;
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;
@@ -350,6 +352,12 @@ BuiltScene buildWorld(const io::Scene& scene) {
               model.mesh.triangleCount(), model.samples->size(), model.levelSet->nodeCounts()[0],
               model.levelSet->nodeCounts()[1], model.levelSet->nodeCounts()[2],
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (model.fdem) {
+      log->info("{}: fdem contact elements: {} of {} tetrahedra within reach of the surface, {} contactor faces, "
+                "potential peaks {:.3g} Dn below the surface (median)",
+                shapeItem(spec), model.fdem->elements().size(), model.fdem->totalTetCount(), model.fdem->faces().size(),
+                model.fdem->reach() / std::cbrt(model.unitMass.volume));
+    }
   }
 
   std::vector<double> bodyRadius;

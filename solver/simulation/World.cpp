@@ -68,6 +68,20 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
   model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
   model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
   buildBuckets(*model);
+  if (settings_.contactModel == ContactModel::Fdem) {
+    model->fdem = std::make_unique<contact::FdemMesh>(model->mesh, settings_.fdem, "shape '" + name + "'");
+    // Friction keys hold two element indices in 16 bits each (WorldContacts.cpp).
+    if (model->fdem->elements().size() >= 65536u) {
+      core::failInput("shape '" + name + "'",
+                      "{} contact elements within reach of the surface (of {} tetrahedra): at most 65535; lower "
+                      "contact.fdem.elements_per_unit",
+                      model->fdem->elements().size(), model->fdem->totalTetCount());
+    }
+    core::logger("simulation")
+        ->debug("shape '{}': fdem {} tetrahedra, {} kept near the surface, {} contactor faces, reach {:.4g} m", name,
+                model->fdem->totalTetCount(), model->fdem->elements().size(), model->fdem->faces().size(),
+                model->fdem->reach());
+  }
   const auto& values = model->levelSet->values();
   model->innerDepth = values.empty() ? 0.0 : -static_cast<double>(*std::min_element(values.begin(), values.end()));
   const double h = model->levelSet->cellSize();

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file World.hpp
-/// The rigid FDEM world: shapes (each with its level set and surface samples, shared by all
-/// bodies of the shape), materials, bodies, static planes, and the time step as a list of named
+/// The rigid FDEM world: shapes (each with its level set and surface samples, and with
+/// ContactModel::Fdem its contact-element mesh, shared by all bodies of the shape), materials,
+/// bodies, static planes, and the time step as a list of named
 /// stages (docs/architecture.md, "The time step"):
 ///
 ///   kick(dt/2) -> drift(dt) -> boxes -> broad phase -> narrow phase -> contact law
@@ -14,6 +15,7 @@
 
 #include "contact/BroadPhase.hpp"
 #include "contact/ContactLaw.hpp"
+#include "contact/FdemMesh.hpp"
 #include "contact/LevelSet.hpp"
 #include "contact/SurfaceSamples.hpp"
 #include "dynamics/RigidBodies.hpp"
@@ -78,6 +80,11 @@ struct EnergyGuardSettings {
   std::uint32_t checkInterval = 50; ///< steps between checks (unit: -)
 };
 
+/// Which contact model the narrow phase uses: surface samples in level sets (docs/theory.md,
+/// sections 6-7) or Munjiza's potential over tetrahedral contact elements ("FDEM potential contact").
+/// Both share the broad phase, friction, damping, guard rails and output.
+enum class ContactModel { LevelSet, Fdem };
+
 /// Settings of the whole simulation.
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
@@ -85,6 +92,8 @@ struct WorldSettings {
   double timeStepSafety = 0.2;            ///< fraction of the stability limit used by "auto" (unit: -)
   contact::LevelSetSettings levelSet;     ///< grid resolution per shape
   contact::SurfaceSampleSettings samples; ///< surface sample spacing per shape
+  ContactModel contactModel = ContactModel::LevelSet; ///< narrow phase and normal force
+  contact::FdemMeshSettings fdem;         ///< contact elements per shape (fdem only)
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
   /// Guard rail against tunnelling: an overlap deeper than this fraction of the thinner part's
@@ -118,6 +127,7 @@ struct ShapeModel {
   std::unique_ptr<contact::LevelSet> levelSet;
   std::unique_ptr<contact::SurfaceSamples> samples;
   SampleBuckets buckets;
+  std::unique_ptr<contact::FdemMesh> fdem; ///< contact elements (ContactModel::Fdem only)
   geometry::Box3 bounds;                ///< bounds of `mesh` (unit: m, body frame)
   double innerDepth = 0.0;              ///< depth of the deepest interior point, -min phi (unit: m, unscaled)
   double radius = 0.0;                  ///< largest vertex distance from the centroid (m)
@@ -177,7 +187,7 @@ public:
 /// Counters of the last step, for logs and benchmarks.
 struct StepStatistics {
   std::size_t candidatePairs = 0;   ///< broad-phase pairs (bodies and planes)
-  std::size_t contactPoints = 0;    ///< engaged sample points
+  std::size_t contactPoints = 0;    ///< engaged sample points (fdem: element-pair and face records)
   std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
   double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
 };
@@ -223,7 +233,8 @@ public:
   [[nodiscard]] double bodyScale(BodyId b) const { return bodyScale_[b]; }
   [[nodiscard]] const Quat& bodyNaturalToBody(BodyId b) const { return shapes_[bodyShape_[b]]->naturalToBody; }
   [[nodiscard]] const StepStatistics& lastStep() const { return stats_; }
-  /// Engaged sample points on body b in the last force evaluation (unit: -).
+  /// Engaged sample points (fdem: element-pair and face records) on body b in the last force
+  /// evaluation (unit: -).
   [[nodiscard]] std::int32_t contactCount(BodyId b) const { return b < contactCount_.size() ? contactCount_[b] : 0; }
   /// Largest single-point contact force on body b in the last force evaluation (unit: N).
   [[nodiscard]] double maxContactForce(BodyId b) const { return b < maxContactForce_.size() ? maxContactForce_[b] : 0.0; }
@@ -279,6 +290,8 @@ private:
   struct PairWork;
   void computeForces(double dt, double stateTime);
   void updateBoxes();
+  /// The fdem narrow phase and law of one pair (WorldContacts.cpp): fills pw like the level-set path.
+  void fdemPairForces(PairWork& pw, double dt) const;
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
   // WorldLoads.cpp: the external-load stages.
   void applyLoadStages(double time);

@@ -5,6 +5,7 @@
 // rails on overlap and tunnelling; then the external-load stages (WorldLoads.cpp).
 #include "simulation/World.hpp"
 
+#include "contact/FdemPotential.hpp"
 #include "simulation/WorldBuckets.hpp"
 #include "simulation/WorldInternal.hpp"
 
@@ -61,6 +62,10 @@ struct World::PairWork {
   Vec3 weightedPoint = Vec3::Zero(); ///< sum of normal force x point (N m)
   Vec3 pointSum = Vec3::Zero();      ///< sum of the points (m)
   double normalForce = 0.0;          ///< sum of normal forces (N)
+  /// fdem, body pairs: median depth at which the potential of the pair's surface elements peaks
+  /// (m); the overlap guard stops the run at 0.8 of it (infinite for static geometry: its depth
+  /// never fades).
+  double fdemReach = std::numeric_limits<double>::infinity();
 };
 
 contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, double lengthScale) const {
@@ -121,6 +126,131 @@ void World::updateBoxes() {
   }
 }
 
+void World::fdemPairForces(PairWork& pw, double dt) const {
+  // The potential gives the elastic force of each element pair (or contactor face against static
+  // geometry) with its stiffness k and mean depth d = |F| / k; the pair then goes through the same
+  // law as a sample point (ContactLaw: dashpot, friction spring with history per element pair), so
+  // the two models differ only in where the normal force comes from.
+  const BodyId a = pw.key.first;
+  const bool isStatic = (pw.key.second & kStaticBits) != 0;
+  const History* previous = findPairHistory(pw.key);
+  const ShapeModel& shapeA = *shapes_[bodyShape_[a]];
+  contact::FdemPose pa;
+  pa.rotation = bodies_.orientation(a).toRotationMatrix();
+  pa.position = bodies_.position(a);
+  pa.scale = bodyScale_[a];
+  double lengthScale = bodyDn(a);
+  double inverseMassSum = bodies_.inverseMass(a);
+  contact::ContactParameters params;
+  std::vector<contact::FdemContact> records;
+  BodyId b = a;
+  if (isStatic) {
+    const bool isPlane = (pw.key.second & kPlaneBit) != 0;
+    const std::uint32_t index = pw.key.second & ~kStaticBits;
+    double planeOffset = 0.0;
+    std::span<const Vec3> normals;
+    std::span<const double> offsets;
+    MaterialId staticMaterial = 0;
+    geometry::Box3 region;
+    if (isPlane) {
+      const StaticPlane& pl = planes_[index];
+      planeOffset = pl.normal.dot(pl.point);
+      normals = std::span<const Vec3>(&pl.normal, 1);
+      offsets = std::span<const double>(&planeOffset, 1);
+      staticMaterial = pl.material;
+      region = boxes_[a];
+    } else {
+      const StaticConvex& piece = convex_[index];
+      normals = piece.normals;
+      offsets = piece.offsets;
+      staticMaterial = piece.material;
+      region = piece.box;
+    }
+    params = pairParameters(bodyMaterial_[a], staticMaterial, lengthScale);
+    // The static solid has no potential of its own: A's surface takes the whole E_p d / L.
+    pw.maxOverlap = contact::fdemHalfSpaces(*shapeA.fdem, pa, normals, offsets, region,
+                                            params.penaltyModulus / lengthScale, records);
+  } else {
+    b = pw.key.second;
+    const ShapeModel& shapeB = *shapes_[bodyShape_[b]];
+    contact::FdemPose pb;
+    pb.rotation = bodies_.orientation(b).toRotationMatrix();
+    pb.position = bodies_.position(b);
+    pb.scale = bodyScale_[b];
+    lengthScale = std::min(lengthScale, bodyDn(b));
+    inverseMassSum += bodies_.inverseMass(b);
+    // Static geometry's potential is its exact depth and never fades; two bodies' element
+    // potentials peak at their surface elements' centroids.
+    pw.fdemReach = std::min(shapeA.fdem->reach() * pa.scale, shapeB.fdem->reach() * pb.scale);
+    params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
+    // Each body's potential carries half: E_p / (2 L) per body, E_p d / L for a flat overlap.
+    pw.maxOverlap = contact::fdemBodyPair(*shapeA.fdem, pa, *shapeB.fdem, pb,
+                                          0.5 * params.penaltyModulus / lengthScale, records);
+  }
+  if (records.empty()) {
+    return;
+  }
+  double pairStiffness = 0.0;
+  for (const auto& r : records) {
+    pairStiffness += r.stiffness;
+  }
+  const double effectiveMass = inverseMassSum > 0.0 ? 1.0 / inverseMassSum : 0.0;
+  const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
+  const Vec3& xA = pa.position;
+  const Vec3& xB = bodies_.position(b);
+  pw.history.reserve(records.size());
+  for (const auto& r : records) {
+    // The elastic force splits into its part along the contact normal, which goes through the law
+    // with the dashpot and the friction cap, and the rest (the pull of a side strip along the
+    // surface), applied as it is: the sum stays the potential's exact, conservative force.
+    const double elastic = r.force.dot(r.normal);
+    const Vec3 elasticRest = r.force - elastic * r.normal;
+    if (!(elastic > 0.0) || !(r.stiffness > 0.0)) {
+      pw.forceA += r.force;
+      pw.torqueA += r.torque;
+      if (!isStatic) {
+        pw.forceB -= r.force;
+        pw.torqueB -= r.torque + (xA - xB).cross(r.force);
+      }
+      pw.elasticEnergy += r.energy;
+      continue;
+    }
+    // Key: the contactor face (static), or the element pair (16 bits each; World::addShape checks).
+    const std::uint32_t key = isStatic ? r.contactor : ((r.contactor << 16) | r.target);
+    const Vec3& n = r.normal;
+    Vec3 vRel = bodies_.velocityAtPoint(a, r.point);
+    if (!isStatic) {
+      vRel -= bodies_.velocityAtPoint(b, r.point);
+    }
+    // The area that gives k = E_p a / L in the law: k d = the normal elastic force.
+    const double area = r.stiffness * lengthScale / params.penaltyModulus;
+    const contact::PointHistory* prev = findHistory(previous, key);
+    const contact::PointForce f = contact::evaluatePointContact(params, {n, r.depth, area, vRel},
+                                                                prev ? *prev : contact::PointHistory{}, beta, dt);
+    const Vec3 total = f.force + elasticRest;
+    // The elastic part keeps its exact torque (the potential's, conservative); the dashpot and
+    // friction act at the traction centre.
+    const Vec3 extra = total - r.force;
+    pw.maxPointForce = std::max(pw.maxPointForce, total.norm());
+    pw.weightedPoint += f.normalForce * r.point;
+    pw.pointSum += r.point;
+    pw.normalForce += f.normalForce;
+    const double k = r.stiffness;
+    const double kt = params.tangentialStiffnessRatio * k;
+    const double holdable = kt > 0.0 ? params.frictionStatic * elastic / kt : 0.0;
+    const double stretch = std::min(f.history.stretch.norm(), holdable);
+    pw.elasticEnergy += r.energy + 0.5 * kt * stretch * stretch;
+    pw.forceA += total;
+    pw.torqueA += r.torque + (r.point - xA).cross(extra);
+    if (!isStatic) {
+      pw.forceB -= total;
+      pw.torqueB -= r.torque + (xA - xB).cross(r.force) + (r.point - xB).cross(extra);
+    }
+    pw.history.emplace_back(key, f.history);
+  }
+  std::sort(pw.history.begin(), pw.history.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+}
+
 void World::computeForces(double dt, double stateTime) {
   bodies_.clearForces();
   updateBoxes();
@@ -158,6 +288,10 @@ void World::computeForces(double dt, double stateTime) {
 #pragma omp parallel for schedule(dynamic, 1) if (work.size() >= 16)
   for (std::size_t w = 0; w < work.size(); ++w) {
     PairWork& pw = work[w];
+    if (settings_.contactModel == ContactModel::Fdem) {
+      fdemPairForces(pw, dt);
+      continue;
+    }
     const BodyId a = pw.key.first;
     const bool plane = (pw.key.second & kStaticBits) != 0; // any static geometry: plane or convex piece
     const History* previous = findPairHistory(pw.key);
@@ -437,6 +571,16 @@ void World::computeForces(double dt, double stateTime) {
     }
     const double overlapLimit = settings_.maxOverlapPerDn * dn;
     const double tunnelLimit = settings_.maxOverlapPerInnerDepth * inner;
+    // fdem: the element potentials peak at the surface elements' centroids (median depth
+    // fdemReach); past it a growing share of the engaged elements pushes less the deeper they go.
+    constexpr double kFdemReachFraction = 0.8;
+    if (pw.maxOverlap > kFdemReachFraction * pw.fdemReach) {
+      throw SimulationError(fmt::format(
+          "t = {:.6g} s: {} and {} overlap by {:.4g} m, {} x the median depth {:.4g} m at which the fdem potential "
+          "of their surface elements peaks: deeper, the push fades; raise the penalty modulus, lower the speed, or "
+          "use fewer, larger contact elements (contact.fdem.elements_per_unit)",
+          time_, bodies_.describe(a), otherName, pw.maxOverlap, kFdemReachFraction, pw.fdemReach));
+    }
     if (pw.maxOverlap > std::min(overlapLimit, tunnelLimit)) {
       if (tunnelLimit < overlapLimit) {
         throw SimulationError(fmt::format(

@@ -5,6 +5,7 @@
 //   bench_solver pile --shape cube|rock|coreloc --count N [--threads 1,2] [--settle S] [--steps K]
 //   bench_solver armour-layer [--units 242] [--rocks 3436] [--threads 1,2] [--seconds S]
 //   bench_solver all [--quick]     (the whole matrix as markdown tables; scripts/bench-solver)
+//   bench_solver contact-models [--pile N] [--seconds S]   (level set vs fdem, docs/fidelity.md)
 //
 // A pile is deposited in place (a loose random pile built geometrically, unit by unit, so that it
 // forms in 0.1 s of simulated time instead of the seconds a drop through metres needs: 4000 units
@@ -27,12 +28,18 @@
 #include "benchmarks/SolverBenchPile.hpp"
 #include "benchmarks/SolverBenchReport.hpp"
 
+#include "geometry/ShapeLibrary.hpp"
+#include "simulation/World.hpp"
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <random>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -60,6 +67,153 @@ std::vector<int> parseThreads(const std::vector<int>& threads) {
     }
   }
   return threads;
+}
+
+// ---------------------------------------------------------------------------------------------
+// contact-models: the same scenes under the level-set and the fdem contact (docs/fidelity.md)
+// ---------------------------------------------------------------------------------------------
+
+using armour::simulation::BodyId;
+using armour::simulation::ContactModel;
+using armour::simulation::Quat;
+using armour::simulation::Vec3;
+
+/// One run of a scene under one model and resolution.
+struct ModelRun {
+  std::string label;
+  double buildSeconds = 0.0; ///< shapes (level sets, samples or tetrahedra) (s)
+  double runSeconds = 0.0;   ///< stepping (s)
+  std::uint64_t steps = 0;
+  double peakOverlap = 0.0;  ///< deepest overlap seen, / Dn (unit: -)
+  std::vector<Vec3> positions;
+  std::vector<Quat> orientations;
+  std::string error;         ///< a guard rail that stopped the run
+};
+
+/// scene "dolos-drop": one Dolos (Dn 1 m) dropped tilted from 0.3 m onto a floor; "coreloc-pile":
+/// `count` Core-Locs released from a jittered grid into a walled box. resolution: fdem tetrahedra
+/// per unit, or level-set cells per Dn (samples at 2.4 / cells Dn, the default ratio).
+ModelRun runContactModel(const std::string& scene, ContactModel model, double resolution, int count, double seconds,
+                         double penalty) {
+  namespace sim = armour::simulation;
+  ModelRun out;
+  out.label = model == ContactModel::Fdem ? fmt::format("fdem {:.0f} tets/unit", resolution)
+                                          : fmt::format("level set {:.0f} cells/Dn", resolution);
+  sim::WorldSettings ws;
+  ws.contactModel = model;
+  ws.sleep.enabled = false;
+  if (model == ContactModel::Fdem) {
+    ws.fdem.elementsPerUnit = static_cast<std::size_t>(resolution);
+  } else {
+    ws.levelSet.cellsPerDn = resolution;
+    ws.samples.spacingOverDn = 2.4 / resolution;
+  }
+  sim::World world(ws);
+  sim::Material m;
+  m.name = "concrete";
+  m.restitution = 0.3;
+  m.frictionStatic = m.frictionDynamic = 0.6;
+  m.penaltyModulus = penalty;
+  const auto material = world.addMaterial(m);
+  armour::geometry::ShapeRequest request;
+  request.volume = 1.0;
+  const double t0 = wallNow();
+  const auto shape = world.addShape(scene == "dolos-drop" ? "dolos" : "coreloc",
+                                    armour::geometry::makeShape(scene == "dolos-drop" ? "dolos" : "coreloc", request));
+  out.buildSeconds = wallNow() - t0;
+  const double radius = world.shape(shape).radius;
+  world.addPlane({"floor", Vec3::Zero(), Vec3::UnitZ(), material});
+  std::vector<BodyId> bodies;
+  const auto add = [&](const Vec3& x, const Quat& q) {
+    sim::BodySpec b;
+    b.shape = shape;
+    b.material = material;
+    b.position = x;
+    b.orientation = q;
+    bodies.push_back(world.addBody(b));
+  };
+  if (scene == "dolos-drop") {
+    add(Vec3(0, 0, radius + 0.3), Quat(Eigen::AngleAxisd(0.6, Vec3(1, 2, 0.5).normalized())));
+  } else {
+    const int side = std::max(1, static_cast<int>(std::ceil(std::sqrt(count / 2.0))));
+    const double pitch = 2.05 * radius;
+    const double half = 0.5 * side * pitch + 0.2;
+    world.addPlane({"x-", Vec3(-half, 0, 0), Vec3::UnitX(), material});
+    world.addPlane({"x+", Vec3(half, 0, 0), -Vec3::UnitX(), material});
+    world.addPlane({"y-", Vec3(0, -half, 0), Vec3::UnitY(), material});
+    world.addPlane({"y+", Vec3(0, half, 0), -Vec3::UnitY(), material});
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < count; ++i) {
+      const int ix = i % side, iy = (i / side) % side, iz = i / (side * side);
+      const Vec3 axis = Vec3(u(rng), u(rng), u(rng)).normalized();
+      add(Vec3((ix + 0.5) * pitch - 0.5 * side * pitch + 0.05 * u(rng), (iy + 0.5) * pitch - 0.5 * side * pitch,
+               radius + 0.1 + iz * pitch),
+          Quat(Eigen::AngleAxisd(3.14159 * u(rng), axis)));
+    }
+  }
+  const double t1 = wallNow();
+  try {
+    while (world.time() < seconds) {
+      world.step();
+      out.peakOverlap = std::max(out.peakOverlap, world.lastStep().maxOverlap);
+    }
+  } catch (const sim::SimulationError& e) {
+    out.error = e.what();
+  }
+  out.runSeconds = wallNow() - t1;
+  out.steps = world.stepCount();
+  for (BodyId b : bodies) {
+    out.positions.push_back(world.bodies().position(b));
+    out.orientations.push_back(world.naturalOrientation(b));
+  }
+  return out; // Dn = 1 m: overlaps and positions are already in Dn
+}
+
+/// Largest centroid distance and rotation angle between two runs' final states (Dn, degrees).
+std::pair<double, double> difference(const ModelRun& a, const ModelRun& b) {
+  double dx = 0.0, angle = 0.0;
+  for (std::size_t i = 0; i < a.positions.size() && i < b.positions.size(); ++i) {
+    dx = std::max(dx, (a.positions[i] - b.positions[i]).norm());
+    angle = std::max(angle, a.orientations[i].angularDistance(b.orientations[i]) * 180.0 / 3.14159265358979);
+  }
+  return {dx, angle};
+}
+
+int runContactModels(int pileCount, double seconds, double pileSeconds, double penalty) {
+  struct Scene {
+    std::string name;
+    int count;
+    double seconds;
+    std::vector<double> fdemRes, levelSetRes;
+  };
+  const std::vector<Scene> scenes{{"dolos-drop", 1, seconds, {600, 2500, 10000}, {12, 24, 48}},
+                                  {"coreloc-pile", pileCount, pileSeconds, {600, 2500}, {24}}};
+  for (const Scene& sc : scenes) {
+    fmt::print("\n### {} ({} unit{}, {} s simulated, E_p = {:.0e} Pa, 1 thread)\n\n", sc.name, sc.count,
+               sc.count > 1 ? "s" : "", sc.seconds, penalty);
+    fmt::print("| model | build (s) | run (s) | steps | steps/s | peak overlap (Dn) | final vs finest same model "
+               "(Dn, deg) | final vs other model at default (Dn, deg) |\n|---|---|---|---|---|---|---|---|\n");
+    std::vector<ModelRun> fdem, ls;
+    for (double r : sc.fdemRes) fdem.push_back(runContactModel(sc.name, ContactModel::Fdem, r, sc.count, sc.seconds, penalty));
+    for (double r : sc.levelSetRes) {
+      ls.push_back(runContactModel(sc.name, ContactModel::LevelSet, r, sc.count, sc.seconds, penalty));
+    }
+    // The defaults: 2500 tets per unit, 24 cells per Dn.
+    const ModelRun& fdemDefault = fdem[fdem.size() > 1 ? 1 : 0];
+    const ModelRun& lsDefault = ls[ls.size() > 1 ? 1 : 0];
+    const auto row = [&](const ModelRun& r, const ModelRun& finest, const ModelRun& other) {
+      const auto [dxF, aF] = difference(r, finest);
+      const auto [dxO, aO] = difference(r, other);
+      fmt::print("| {} | {:.2f} | {:.2f} | {} | {:.0f} | {:.2e} | {:.2e}, {:.2f} | {:.2e}, {:.2f} |{}\n", r.label,
+                 r.buildSeconds, r.runSeconds, r.steps, r.steps / std::max(r.runSeconds, 1e-9), r.peakOverlap, dxF, aF,
+                 dxO, aO, r.error.empty() ? "" : " STOPPED: " + r.error);
+      std::fflush(stdout);
+    };
+    for (const ModelRun& r : fdem) row(r, fdem.back(), lsDefault);
+    for (const ModelRun& r : ls) row(r, ls.back(), fdemDefault);
+  }
+  return 0;
 }
 
 } // namespace
@@ -134,9 +288,23 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cube", "rock", "coreloc"}));
   allCmd->add_flag("--layer,!--no-layer", allLayer, "include the armour layer (default on)");
 
+  int modelsPile = 4;
+  double modelsSeconds = 1.5, modelsPileSeconds = 1.0, modelsPenalty = 1e10;
+  auto* modelsCmd = app.add_subcommand("contact-models", "level set vs fdem contact: a Dolos drop at three "
+                                                         "resolutions each, and a small Core-Loc pile");
+  modelsCmd->add_option("--pile", modelsPile, "Core-Locs in the pile (default 4)");
+  modelsCmd->add_option("--seconds", modelsSeconds, "simulated seconds of the Dolos drop (default 1.5)");
+  modelsCmd->add_option("--pile-seconds", modelsPileSeconds, "simulated seconds of the pile (default 1)");
+  modelsCmd->add_option("--penalty", modelsPenalty,
+                        "penalty modulus (Pa; default 1e10: at 1e9 the dropped pile's impacts reach the depth of the "
+                        "fdem surface elements' centroids, the fdem guard rail)");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (modelsCmd->parsed()) {
+      return runContactModels(modelsPile, modelsSeconds, modelsPileSeconds, modelsPenalty);
+    }
     if (pileCmd->parsed()) {
       pile.threads = parseThreads(pile.threads);
       const CaseResult r = runPile(pile);

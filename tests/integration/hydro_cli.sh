@@ -7,6 +7,8 @@
 #    fixed rock none;
 #  - a run stopped at half time and continued with --restart ends bit for bit where the
 #    uninterrupted run ends (the hydro stage's held loads are in the checkpoint);
+#  - `armour storm` with the storm on the command line replays the same run bit for bit, and
+#    runs to the storm's end without --duration;
 #  - a storm file too short for the run, a missing storm file, and a changed storm file on
 #    restart are refused with messages that name the file and the fix.
 # Arguments: the armour binary, the scenes folder, a work folder.
@@ -57,6 +59,23 @@ PY
 run -o "$out/halves" --duration 2
 run -o "$out/halves" --restart
 cmp "$out/full/final_state.csv" "$out/halves/final_state.csv" || fail "the restarted storm replay differs from the uninterrupted one"
+
+# armour storm: the same storm given on the command line replays the same run, bit for bit;
+# without --duration it runs to the storm's end (offset 16 s of an 18 s storm: 2 s).
+"$armour" --log-level warn storm "$out/scene.yaml" --storm "$out/storm.nc" --duration 4 --threads 1 -o "$out/storm-cmd"
+cmp "$out/full/final_state.csv" "$out/storm-cmd/final_state.csv" || fail "armour storm differs from armour run of the same storm"
+"$armour" --log-level warn storm "$out/scene.yaml" --storm "$out/storm.nc" --time-offset 16 --threads 1 -o "$out/storm-end"
+/usr/bin/python3 - "$out/storm-end/bodies.nc" <<'PY' || fail "armour storm without --duration should run to the storm's end (2 s)"
+import sys, netCDF4
+with netCDF4.Dataset(sys.argv[1]) as ds:
+    t = float(ds["time"][-1])
+    assert abs(t - 2.0) < 1e-2, t
+PY
+set +e
+msg=$("$armour" --log-level warn storm "$out/scene.yaml" --storm "$out/storm.nc" --time-offset 20 2>&1); status=$?
+set -e
+[[ $status -eq 2 ]] || fail "an offset past the storm's end should exit 2, got $status: $msg"
+grep -q "is at or after the end of the storm file" <<< "$msg" || fail "unclear message: $msg"
 
 # Refusals.
 synth "$out/short.nc" 14

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The smoke variant of a shipped placement case (cases/placement/*-smoke.yaml): `armour place`
-# places every unit of its grid, no unit is left moving, the placed scene passes `armour check`
+# places every unit of its grid, no unit is left moving or moved more than 1 Dn, the placed scene passes `armour check`
 # (nothing starts overlapping deeper than the guard rail) and placement.json holds the expected
 # unit and rock counts.
 # Arguments: the armour binary, the case file, a work folder, expected units, expected rocks.
@@ -22,5 +22,7 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 assert s["units"] == int(sys.argv[2]) and s["rocks"] == int(sys.argv[3]), s
 assert s["still_moving"] == [], s
+# The pack holds its grid: no unit ends more than 1 Dn from where it was released.
+assert s["moved_more_than_1dn"] == [], s["moved_more_than_1dn"]
 PY
 echo "$name: OK"; cat "$out/$name-out/placement.txt"

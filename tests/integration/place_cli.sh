@@ -68,4 +68,10 @@ msg=$("$armour" place "$out/nogrid.yaml" 2>&1); code=$?
 set -e
 [[ $code -eq 2 ]] || fail "a missing grid file: exit $code"
 grep -q "nowhere.csv: cannot open the grid file" <<< "$msg" || fail "unclear message: $msg"
+mkdir -p "$out/a-folder"
+set +e
+msg=$("$armour" place "$out/dolos.yaml" --output "$out/a-folder" 2>&1); code=$?
+set -e
+[[ $code -eq 2 ]] || fail "--output naming a folder: exit $code"
+grep -q "a-folder is a folder; give the path of the placed scene file" <<< "$msg" || fail "unclear message: $msg"
 echo "place_cli: OK"

@@ -156,6 +156,10 @@ TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
   refuses(std::string(s).replace(s.find("mode: perturbed"), 15, "mode: random"), "remove euler_deg");
   refuses(std::string(s).replace(s.find("material: concrete\n  volume"), 18, "material: steel"), "no such material");
   refuses(std::string(s).replace(s.find("mode: perturbed"), 15, "mode: perturbed, frame: face"), "expected one of world, slope");
+  refuses(s + "  nest: {tilt_deg: 120}\n", "placement.nest.tilt_deg");
+  refuses(s + "  nest: {max_drift: -1}\n", "placement.nest.max_drift");
+  refuses(s + "  nest: {moves: 0}\n", "placement.nest.moves");
+  refuses(s + "  lowering: sideways\n", "expected one of vertical, slope_normal");
 }
 
 TEST(Placement, SlopeFrameOrientationsLieOnTheFace) {
@@ -191,6 +195,61 @@ TEST(Placement, NoUnitStartsOverlapping) {
   for (const auto& u : r.units) {
     EXPECT_LT(u.gridPoint.z(), 3.0) << u.name; // well below the 6 m crest: it came down
   }
+}
+
+TEST(Placement, NestingWorksUnitsIntoTheHolesOfADenseGrid) {
+  // Four staggered rows of 1 m cubes lying on a 1:2 face, 0.76 m apart up the slope (phi = 0.6):
+  // lowered straight down, a unit lands on the cubes below and the rows stack (the highest
+  // centroid 2.3 Dn above the face; such a stack slumps when released). With `nest:` each unit is
+  // worked into the hole among the units below: every unit lies on the face (centroid less than
+  // 0.8 Dn above it; 0.63 seen), within max_drift of its grid point, and none overlaps anything.
+  std::string s = antiferScene("grid");
+  s.replace(s.find("rows: 2, units_per_row: 2, packing_density: 0.45"), 48, "rows: 4, units_per_row: 2, packing_density: 0.6");
+  const double a = std::atan(0.5);
+  const Eigen::Vector3d normal(-std::sin(a), 0.0, std::cos(a));
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  const auto highest = [&](const placement::PlacementResult& r) {
+    double h = 0.0;
+    for (const auto& u : r.units) h = std::max(h, u.gridPoint.dot(normal));
+    return h;
+  };
+  const placement::PlacementResult stacked = placement::place(parse(s), {}, options);
+  EXPECT_GT(highest(stacked), 1.0) << "the test needs a grid whose rows stack without nesting";
+  const placement::PlacementResult nested = placement::place(parse(s + "  nest: {max_drift: 0.75}\n"), {}, options);
+  ASSERT_EQ(nested.units.size(), 8u);
+  EXPECT_LT(highest(nested), 0.8);
+  // Drift in plan from where the unit was lowered (the grid point, moved inside the walls).
+  for (std::size_t i = 0; i < nested.units.size(); ++i)
+    EXPECT_LE((nested.units[i].gridPoint.head<2>() - stacked.units[i].gridPoint.head<2>()).norm(), 0.75 + 1e-9)
+        << nested.units[i].name;
+  auto& world = *nested.built.world;
+  world.evaluateContacts();
+  EXPECT_EQ(world.lastStep().contactPoints, 0u);
+}
+
+TEST(Placement, SlopeNormalLoweringLandsUnitsAtTheirGridPoints) {
+  // Lowered vertically onto a 1:2 face, a unit whose centroid ends h above the face lies
+  // h tan(alpha) up-slope of its grid point (0.27 m for these 1 m cubes); lowered along the slope
+  // normal it keeps its grid point's up-slope distance s (and its trunk position y), to round-off.
+  const std::string s = antiferScene("grid");
+  const io::Scene scene = parse(s);
+  const auto grid = placement::generateGrid(scene.placement.grid, placement::GridSlope{0.0, 0.0, 0.5}, 1.0, 4.4, 5, "test");
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  const double a = std::atan(0.5);
+  const Eigen::Vector3d along(std::cos(a), 0.0, std::sin(a));
+  const placement::PlacementResult vertical = placement::place(scene, {}, options);
+  const placement::PlacementResult normal = placement::place(parse(s + "  lowering: slope_normal\n"), {}, options);
+  ASSERT_EQ(normal.units.size(), grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    EXPECT_NEAR(normal.units[i].gridPoint.dot(along), grid[i].s, 1e-9) << normal.units[i].name;
+    EXPECT_NEAR(normal.units[i].gridPoint.y(), vertical.units[i].gridPoint.y(), 1e-9) << normal.units[i].name;
+    EXPECT_GT(vertical.units[i].gridPoint.dot(along) - grid[i].s, 0.2) << vertical.units[i].name;
+  }
+  auto& world = *normal.built.world;
+  world.evaluateContacts();
+  EXPECT_EQ(world.lastStep().contactPoints, 0u);
 }
 
 TEST(Placement, ReproducibleFromItsSeedOnAnyThreadCount) {

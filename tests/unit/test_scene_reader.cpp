@@ -377,6 +377,33 @@ TEST(SceneDefaults, MinimalSceneTakesEveryDefault) {
   EXPECT_CONTAINS(s.warnings[0], "every body falls freely");
 }
 
+TEST(SceneContactModel, LevelSetByDefaultFdemOnRequest) {
+  // Level set is the default (docs/fidelity.md: cheaper at the same flat-face stiffness).
+  const Scene d = parseScene(oneBody(), kScenes, "t.yaml");
+  EXPECT_EQ(d.contact.model, ContactModel::LevelSet);
+  EXPECT_EQ(d.contact.fdemElementsPerUnit, 2500u);
+  const Scene f = parseScene("contact: {model: fdem, fdem: {elements_per_unit: 800}}\n" + oneBody(), kScenes, "t.yaml");
+  EXPECT_EQ(f.contact.model, ContactModel::Fdem);
+  EXPECT_EQ(f.contact.fdemElementsPerUnit, 800u);
+  EXPECT_TRUE(f.warnings.size() <= 1u) << "only the free-fall note";
+  // An fdem block under the level-set model is ignored, with a warning naming it.
+  const Scene w = parseScene("contact: {fdem: {elements_per_unit: 800}}\n" + oneBody(), kScenes, "t.yaml");
+  bool warned = false;
+  for (const auto& text : w.warnings) warned = warned || text.find("contact.fdem") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+TEST(SceneContactModel, BadValuesNameKeyValueAndFix) {
+  EXPECT_CONTAINS(errorFrom("contact: {model: femdem}\n" + oneBody()),
+                  "contact.model = femdem: expected one of levelset, fdem");
+  EXPECT_CONTAINS(errorFrom("contact: {model: fdem, fdem: {elements_per_unit: 10}}\n" + oneBody()),
+                  "contact.fdem.elements_per_unit = 10: expected an integer >= 24");
+  EXPECT_CONTAINS(errorFrom("contact: {model: fdem, fdem: {elements_per_unit: 5000000}}\n" + oneBody()),
+                  "contact.fdem.elements_per_unit = 5000000: at most 2000000");
+  EXPECT_CONTAINS(errorFrom("contact: {model: fdem, fdem: {element_size: 0.1}}\n" + oneBody()),
+                  "contact.fdem.element_size: unknown key; valid keys are: elements_per_unit");
+}
+
 TEST(SceneOrientation, TaitBryanIsIntrinsicXYZ) {
   // Build x-y'-z'' literally: turn about x, then about the turned y axis, then about the twice
   // turned z axis, each by Rodrigues' formula; compare with Rx Ry Rz and with the reader.
