@@ -220,7 +220,7 @@ void applyStorm(io::Scene& scene, const RunOptions& o) {
     core::failInput(scene.sourceName, "hydro.model is not `storm`: `armour storm` replays a storm file; set hydro.model: "
                                       "storm (or remove the hydro block for the defaults), or use `armour run`");
   if (!h.enabled) {
-    h = hydro::HydroSettings{};
+    // Without the block every setting keeps its default (the reader leaves them untouched).
     h.enabled = true;
     h.model = hydro::HydroModel::Storm;
     core::logger("run")->info("{} has no hydro: block: the storm's loads with the default settings "

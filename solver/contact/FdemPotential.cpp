@@ -29,7 +29,7 @@ struct Linear {
 };
 
 constexpr int kMaxPolygon = 64; ///< a triangle clipped by n planes has at most 3 + n corners
-constexpr std::size_t kMaxStaticFaces = 56;
+constexpr std::size_t kMaxStaticFaces = kFdemMaxStaticFaces;
 
 template <int D>
 struct Polygon {

@@ -25,11 +25,16 @@
 
 #include "contact/FdemMesh.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace armour::contact {
+
+/// Most faces a static convex piece may have under fdem (its cells are clipped in fixed-size
+/// polygons); World::addConvex refuses more with an InputError (unit: -).
+inline constexpr std::size_t kFdemMaxStaticFaces = 56;
 
 using geometry::Mat3;
 

@@ -12,6 +12,7 @@
 #include "simulation/World.hpp"
 
 #include "core/Error.hpp"
+#include "contact/FdemPotential.hpp"
 #include "core/Log.hpp"
 #include "dynamics/Integrator.hpp"
 #include "geometry/ConvexHull.hpp"
@@ -171,6 +172,13 @@ void World::addConvex(const std::string& name, const std::vector<Vec3>& corners,
   piece.vertices = hull.vertices;
   for (const auto& v : hull.vertices) {
     piece.box.extend(v);
+  }
+  // The fdem half-space evaluation clips against every face of a piece at once, in fixed-size
+  // polygons (contact::kFdemMaxStaticFaces).
+  if (settings_.contactModel == ContactModel::Fdem && piece.normals.size() > contact::kFdemMaxStaticFaces) {
+    core::failInput(where, "has {} faces; contact.model fdem handles static pieces of at most {} faces: split the "
+                           "piece, coarsen the height field, or use contact.model levelset",
+                    piece.normals.size(), contact::kFdemMaxStaticFaces);
   }
   piece.innerDepth = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < piece.normals.size(); ++k) {

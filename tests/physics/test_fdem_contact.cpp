@@ -5,6 +5,7 @@
 // at rest, thread-count determinism).
 
 #include "geometry/ShapeLibrary.hpp"
+#include "core/Error.hpp"
 #include "simulation/World.hpp"
 
 #include <gtest/gtest.h>
@@ -287,4 +288,23 @@ TEST(FdemContact, OneAndTwoThreadsGiveBitIdenticalStates) {
   omp_set_num_threads(saved);
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "state entry " << i;
+}
+
+TEST(FdemContact, StaticPieceWithTooManyFacesIsRefusedWithTheFix) {
+  // A 200-point sphere's hull has far more than kFdemMaxStaticFaces faces: fdem cannot clip
+  // against it in one pass, so the build says so instead of failing inside a step.
+  World world(fdemSettings());
+  const MaterialId m = world.addMaterial(concrete(0.5, 0.6));
+  std::vector<Vec3> corners;
+  for (int i = 0; i < 200; ++i) {
+    const double z = -1.0 + (2.0 * i + 1.0) / 200.0, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    corners.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  try {
+    world.addConvex("boulder", corners, m);
+    ADD_FAILURE() << "a 200-point hull was accepted under fdem";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("static piece 'boulder'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("contact.model levelset"), std::string::npos) << e.what();
+  }
 }
