@@ -757,6 +757,10 @@ void report(const ReportOptions& o) {
     delta = analysis::relativeDensity(unitDensity, st.waterDensity);
   } catch (const core::InputError&) {
   }
+  // No wave measured at the gauge (a still-water storm, or eta not sampled): Hs = 0 is not a sea
+  // state the formulas take; they are then listed as not applicable.
+  if (!(hs > 0.0)) hs = kNaN;
+  if (!(tm > 0.0)) tm = kNaN;
   if (std::isfinite(hs) && std::isfinite(delta)) ns = analysis::stabilityNumber(hs, delta, dnMean);
   if (std::isfinite(hs) && std::isfinite(tm)) steepness = analysis::waveSteepness(hs, tm);
   if (std::isfinite(steepness) && std::isfinite(cotAlpha)) xi = analysis::iribarren(1.0 / cotAlpha, steepness);

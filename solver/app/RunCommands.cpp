@@ -213,7 +213,8 @@ void checkScene(const std::string& path) {
 }
 
 /// `armour storm`: put the storm file on the scene's hydro settings (the scene's own `hydro:`
-/// options, or the defaults without one) and, without --duration, run to the end of the storm.
+/// options, or the defaults without one), from the storm's first record if the scene's offset is
+/// earlier, and, without --duration, run to the end of the storm.
 void applyStorm(io::Scene& scene, const RunOptions& o) {
   hydro::HydroSettings& h = scene.hydro;
   if (h.enabled && h.model != hydro::HydroModel::Storm)
@@ -232,8 +233,15 @@ void applyStorm(io::Scene& scene, const RunOptions& o) {
       core::failInput("--time-offset", "{} s: give the storm time (s, >= 0) at which the run starts", *o.timeOffset);
     h.storm.timeOffset = *o.timeOffset;
   }
+  const storm::StormReader reader(h.storm.file);
+  if (!o.timeOffset && h.storm.timeOffset < reader.times().front()) {
+    // A sampled storm starts at its first sampling time (0.05 s for a run sampled every 0.05 s):
+    // replay it from there.
+    core::logger("run")->info("the storm file starts at t = {} s: replaying from there (--time-offset to choose)",
+                              reader.times().front());
+    h.storm.timeOffset = reader.times().front();
+  }
   if (!o.durationGiven) {
-    const storm::StormReader reader(h.storm.file);
     const double left = reader.times().back() - h.storm.timeOffset;
     if (!(left > 0.0))
       core::failInput("--time-offset", "{} s is at or after the end of the storm file {} ({} s); give an earlier offset",
