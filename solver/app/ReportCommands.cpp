@@ -3,14 +3,15 @@
 
 #include "analysis/DesignFormulas.hpp"
 #include "analysis/Displacement.hpp"
+#include "analysis/WaveStatistics.hpp"
 #include "app/PackAnalysis.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
+#include "io/BodySeriesReader.hpp"
 #include "io/SceneReader.hpp"
 #include "storm/StormFile.hpp"
 
 #include <fmt/format.h>
-#include <netcdf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -81,92 +82,10 @@ std::string csvNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v)
 // bodies.nc
 // ------------------------------------------------------------------------------------------------
 
-/// The parts of bodies.nc the report reads: the body table, the times, and the history attribute.
-/// Records are read block by block (streaming: a one-hour series does not fit in memory).
-class SeriesReader {
-public:
-  explicit SeriesReader(const fs::path& path) : path_(path) {
-    if (!fs::exists(path))
-      core::failInput(path.string(), "missing: the run folder has no body series; give the output folder of a run "
-                                     "(`armour run` writes bodies.nc there when output.series_interval > 0)");
-    check(nc_open(path.c_str(), NC_NOWRITE, &ncid_),
-          "open (not a readable netCDF file: cut short or damaged, so rerun the scene or restart it from its "
-          "checkpoint; or locked by a run still writing it, so set HDF5_USE_FILE_LOCKING=FALSE)");
-    std::size_t strlen = 0;
-    check(nc_inq_dimid(ncid_, "time", &timeDim_), "dimension 'time'");
-    check(nc_inq_dimlen(ncid_, timeDim_, &records_), "dimension 'time'");
-    int dim = 0;
-    check(nc_inq_dimid(ncid_, "body", &dim), "dimension 'body'");
-    check(nc_inq_dimlen(ncid_, dim, &bodies_), "dimension 'body'");
-    check(nc_inq_dimid(ncid_, "name_strlen", &dim), "dimension 'name_strlen'");
-    check(nc_inq_dimlen(ncid_, dim, &strlen), "dimension 'name_strlen'");
-    check(nc_inq_varid(ncid_, "time", &timeVar_), "variable 'time'");
-    check(nc_inq_varid(ncid_, "position", &positionVar_), "variable 'position'");
-    check(nc_inq_varid(ncid_, "orientation", &orientationVar_), "variable 'orientation'");
-    int nameVar = 0;
-    check(nc_inq_varid(ncid_, "body_name", &nameVar), "variable 'body_name'");
-    if (records_ < 1)
-      core::failInput(path_.string(), "holds no records: the run stopped before its first series output; run it "
-                                      "longer or restart it");
-    times_.resize(records_);
-    check(nc_get_var_double(ncid_, timeVar_, times_.data()), "variable 'time'");
-    std::vector<char> names(bodies_ * std::max<std::size_t>(strlen, 1), '\0');
-    if (strlen > 0) check(nc_get_var_text(ncid_, nameVar, names.data()), "variable 'body_name'");
-    for (std::size_t b = 0; b < bodies_; ++b) {
-      std::string n(names.data() + b * strlen, strlen);
-      n = n.substr(0, n.find('\0'));
-      names_.push_back(n);
-    }
-    std::size_t length = 0;
-    if (nc_inq_attlen(ncid_, NC_GLOBAL, "history", &length) == NC_NOERR) {
-      std::string h(length, '\0');
-      if (nc_get_att_text(ncid_, NC_GLOBAL, "history", h.data()) == NC_NOERR) history_ = h;
-    }
-  }
-  ~SeriesReader() {
-    if (ncid_ >= 0) nc_close(ncid_);
-  }
-  SeriesReader(const SeriesReader&) = delete;
-  SeriesReader& operator=(const SeriesReader&) = delete;
-
-  [[nodiscard]] std::size_t records() const { return records_; }
-  [[nodiscard]] const std::vector<double>& times() const { return times_; }
-  [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
-  [[nodiscard]] const std::string& history() const { return history_; }
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
-  /// Positions of records [k0, k0 + n): (record, body, 3) (unit: m).
-  void positions(std::size_t k0, std::size_t n, std::vector<double>& out) const {
-    out.resize(n * bodies_ * 3);
-    const std::size_t start[3] = {k0, 0, 0}, count[3] = {n, bodies_, 3};
-    check(nc_get_vara_double(ncid_, positionVar_, start, count, out.data()), "variable 'position'");
-  }
-  /// Orientations (w, x, y, z) of record k: (body, 4).
-  void orientations(std::size_t k, std::vector<double>& out) const {
-    out.resize(bodies_ * 4);
-    const std::size_t start[3] = {k, 0, 0}, count[3] = {1, bodies_, 4};
-    check(nc_get_vara_double(ncid_, orientationVar_, start, count, out.data()), "variable 'orientation'");
-  }
-
-private:
-  void check(int status, const char* what) const {
-    if (status != NC_NOERR)
-      core::failInput(path_.string(), "{}: {}; is it the bodies.nc of an `armour run`? (see docs/output-files.md)",
-                      what, nc_strerror(status));
-  }
-  fs::path path_;
-  int ncid_ = -1;
-  int timeDim_ = -1, timeVar_ = -1, positionVar_ = -1, orientationVar_ = -1;
-  std::size_t records_ = 0, bodies_ = 0;
-  std::vector<double> times_;
-  std::vector<std::string> names_;
-  std::string history_;
-};
-
 /// The scene a run was made from: the argument after `run` on the last line of the history
 /// attribute that has one, looked for as given, relative to the current folder and to the run
 /// folder's parent.
-fs::path sceneFromHistory(const SeriesReader& series, const fs::path& runDir) {
+fs::path sceneFromHistory(const io::BodySeriesReader& series, const fs::path& runDir) {
   std::istringstream lines(series.history());
   std::string line, named;
   while (std::getline(lines, line)) {
@@ -196,103 +115,6 @@ fs::path sceneFromHistory(const SeriesReader& series, const fs::path& runDir) {
 // ------------------------------------------------------------------------------------------------
 // Storm input: wave statistics of eta at a gauge
 // ------------------------------------------------------------------------------------------------
-
-struct WaveStatistics {
-  double hs = kNaN;      ///< H1/3 of the zero-down-crossing waves (unit: m)
-  double hmax = kNaN;    ///< (unit: m)
-  double hm0 = kNaN;     ///< 4 sqrt(m0) (unit: m)
-  double tm = kNaN;      ///< mean zero-down-crossing period (unit: s)
-  double tp = kNaN;      ///< peak period of the periodogram (unit: s)
-  std::size_t waves = 0; ///< complete zero-down-crossing waves (unit: -)
-};
-
-/// In-place radix-2 FFT (size a power of 2).
-void fft(std::vector<std::complex<double>>& a) {
-  const std::size_t n = a.size();
-  for (std::size_t i = 1, j = 0; i < n; ++i) {
-    std::size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1) j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(a[i], a[j]);
-  }
-  for (std::size_t len = 2; len <= n; len <<= 1) {
-    const double angle = -2.0 * std::numbers::pi / static_cast<double>(len);
-    const std::complex<double> w(std::cos(angle), std::sin(angle));
-    for (std::size_t i = 0; i < n; i += len) {
-      std::complex<double> wk(1.0, 0.0);
-      for (std::size_t k = 0; k < len / 2; ++k) {
-        const auto u = a[i + k], v = a[i + k + len / 2] * wk;
-        a[i + k] = u + v;
-        a[i + k + len / 2] = u - v;
-        wk *= w;
-      }
-    }
-  }
-}
-
-/// Time-domain (zero down-crossing) and spectral statistics of a surface elevation record.
-WaveStatistics waveStatistics(const std::vector<double>& t, const std::vector<double>& eta) {
-  WaveStatistics s;
-  const std::size_t n = t.size();
-  if (n < 4) return s;
-  double mean = 0.0;
-  for (double e : eta) mean += e / static_cast<double>(n);
-  double var = 0.0;
-  for (double e : eta) var += (e - mean) * (e - mean) / static_cast<double>(n);
-  s.hm0 = 4.0 * std::sqrt(var);
-  // Zero down-crossings (about the mean), at the interpolated crossing times.
-  std::vector<double> crossings;
-  std::vector<std::size_t> crossingIndex;
-  for (std::size_t k = 1; k < n; ++k) {
-    const double a = eta[k - 1] - mean, b = eta[k] - mean;
-    if (a > 0.0 && b <= 0.0) {
-      crossings.push_back(t[k - 1] + (t[k] - t[k - 1]) * a / (a - b));
-      crossingIndex.push_back(k);
-    }
-  }
-  std::vector<double> heights;
-  for (std::size_t w = 1; w < crossings.size(); ++w) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t k = crossingIndex[w - 1]; k < crossingIndex[w]; ++k) {
-      lo = std::min(lo, eta[k]);
-      hi = std::max(hi, eta[k]);
-    }
-    heights.push_back(hi - lo);
-  }
-  s.waves = heights.size();
-  if (!heights.empty()) {
-    s.tm = (crossings.back() - crossings.front()) / static_cast<double>(heights.size());
-    std::sort(heights.begin(), heights.end(), std::greater<>());
-    const std::size_t third = std::max<std::size_t>(1, heights.size() / 3);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < third; ++i) sum += heights[i];
-    s.hs = sum / static_cast<double>(third);
-    s.hmax = heights.front();
-  }
-  // Periodogram on a uniform resampling (records may be unevenly spaced), zero-padded to 2^m.
-  const double duration = t.back() - t.front();
-  const double dt = duration / static_cast<double>(n - 1);
-  std::size_t m = 1;
-  while (m < n) m <<= 1;
-  std::vector<std::complex<double>> a(m, 0.0);
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double ti = t.front() + dt * static_cast<double>(i);
-    while (j + 2 < n && t[j + 1] < ti) ++j;
-    const double r = std::clamp((ti - t[j]) / (t[j + 1] - t[j]), 0.0, 1.0);
-    a[i] = (1.0 - r) * eta[j] + r * eta[j + 1] - mean;
-  }
-  fft(a);
-  double best = 0.0;
-  std::size_t peak = 0;
-  for (std::size_t f = 1; f < m / 2; ++f)
-    if (std::norm(a[f]) > best) {
-      best = std::norm(a[f]);
-      peak = f;
-    }
-  if (peak > 0) s.tp = static_cast<double>(m) * dt / static_cast<double>(peak);
-  return s;
-}
 
 /// "Hs=7 m", "Hs 7 m", "H=1.5 m" (regular waves) and "Tp 11 s", "T=6 s" in a provenance text.
 double provenanceValue(const std::string& text, const char* symbols) {
@@ -336,7 +158,7 @@ void runPython(const fs::path& folder, const fs::path& runDir) {
 /// The storm input of a run: wave statistics of eta at the gauge, the provenance's Hs and Tp, and
 /// the pressure history at a voxel over the run's window (storm.csv).
 struct StormSummary {
-  WaveStatistics waves;
+  analysis::WaveStatistics waves;
   double gaugeX = kNaN;         ///< (unit: m)
   double voxelX = kNaN;         ///< (unit: m)
   double voxelZ = kNaN;         ///< (unit: m)
@@ -386,7 +208,7 @@ StormSummary summariseStorm(const fs::path& stormPath, const io::Scene& scene, c
   s.gaugeX = h.x[ig];
   std::vector<double> eta(times.size());
   for (std::size_t k = 0; k < times.size(); ++k) eta[k] = reader.eta(k)[ig];
-  s.waves = waveStatistics(times, eta);
+  s.waves = analysis::waveStatistics(times, eta);
   // The voxel: given, or a permanently submerged one with data near the units (seed 000 Fig. 5:
   // "a permanently submerged cell inside the armour layer near the centre of the model").
   std::size_t ix = 0, iz = 0;
@@ -542,7 +364,7 @@ void report(const ReportOptions& o) {
   if (!(o.displacedDn > 0.0)) core::failInput("--displaced-dn", "{}: must be positive (unit: Dn)", o.displacedDn);
   if (o.stormWindow != "run" && o.stormWindow != "all")
     core::failInput("--storm-window", "'{}': give run or all", o.stormWindow);
-  const SeriesReader series(runDir / "bodies.nc");
+  const io::BodySeriesReader series(runDir / "bodies.nc");
   const fs::path scenePath = o.scene.empty() ? sceneFromHistory(series, runDir) : fs::path(o.scene);
   const io::Scene scene = io::readScene(scenePath);
 
