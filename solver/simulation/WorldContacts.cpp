@@ -48,6 +48,41 @@ const contact::PointHistory* findHistory(const std::vector<std::pair<std::uint32
   return it != h->end() && it->first == key ? &it->second : nullptr;
 }
 
+/// A static solid as the half-spaces n_k . x <= d_k both contact models test against: a plane
+/// is one, a convex piece several. Views, no copies (every body-static pair, every step); the
+/// plane's offset is held here, so use offsets() while the target is alive.
+struct StaticTarget {
+  std::span<const Vec3> normals;
+  std::span<const double> pieceOffsets;
+  double planeOffset = 0.0;
+  bool plane = false;
+  MaterialId material = 0;
+  geometry::Box3 region; ///< where a body's surface can be inside it (world)
+  [[nodiscard]] std::span<const double> offsets() const {
+    return plane ? std::span<const double>(&planeOffset, 1) : pieceOffsets;
+  }
+};
+
+StaticTarget staticTarget(const std::vector<StaticPlane>& planes, const std::vector<StaticConvex>& convex, bool isPlane,
+                          std::uint32_t index, const geometry::Box3& bodyBox) {
+  StaticTarget t;
+  t.plane = isPlane;
+  if (isPlane) {
+    const StaticPlane& pl = planes[index];
+    t.planeOffset = pl.normal.dot(pl.point);
+    t.normals = std::span<const Vec3>(&pl.normal, 1);
+    t.material = pl.material;
+    t.region = bodyBox; // a plane reaches everywhere: the body's box bounds the search
+  } else {
+    const StaticConvex& piece = convex[index];
+    t.normals = piece.normals;
+    t.pieceOffsets = piece.offsets;
+    t.material = piece.material;
+    t.region = piece.box;
+  }
+  return t;
+}
+
 } // namespace
 
 /// What one candidate pair produces in the force stage: written by one thread, read serially.
@@ -147,25 +182,11 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   if (isStatic) {
     const bool isPlane = (pw.key.second & kPlaneBit) != 0;
     const std::uint32_t index = pw.key.second & ~kStaticBits;
-    double planeOffset = 0.0;
-    std::span<const Vec3> normals;
-    std::span<const double> offsets;
-    MaterialId staticMaterial = 0;
-    geometry::Box3 region;
-    if (isPlane) {
-      const StaticPlane& pl = planes_[index];
-      planeOffset = pl.normal.dot(pl.point);
-      normals = std::span<const Vec3>(&pl.normal, 1);
-      offsets = std::span<const double>(&planeOffset, 1);
-      staticMaterial = pl.material;
-      region = boxes_[a];
-    } else {
-      const StaticConvex& piece = convex_[index];
-      normals = piece.normals;
-      offsets = piece.offsets;
-      staticMaterial = piece.material;
-      region = piece.box;
-    }
+    const StaticTarget target = staticTarget(planes_, convex_, isPlane, index, boxes_[a]);
+    const std::span<const Vec3> normals = target.normals;
+    const std::span<const double> offsets = target.offsets();
+    const MaterialId staticMaterial = target.material;
+    const geometry::Box3& region = target.region;
     params = pairParameters(bodyMaterial_[a], staticMaterial, lengthScale);
     // The static solid has no potential of its own: A's surface takes the whole E_p d / L.
     pw.maxOverlap = contact::fdemHalfSpaces(*shapeA.fdem, pa, normals, offsets, region,
@@ -311,25 +332,11 @@ void World::computeForces(double dt, double stateTime) {
       const bool isPlane = (pw.key.second & kPlaneBit) != 0;
       const std::uint32_t index = pw.key.second & ~kStaticBits;
       // Views of the faces, no copies: this runs for every body-static pair every step.
-      std::span<const Vec3> normals;
-      std::span<const double> offsets;
-      double planeOffset = 0.0;
-      MaterialId staticMaterial = 0;
-      geometry::Box3 region; // where samples can be inside (world)
-      if (isPlane) {
-        const StaticPlane& pl = planes_[index];
-        planeOffset = pl.normal.dot(pl.point);
-        normals = std::span<const Vec3>(&pl.normal, 1);
-        offsets = std::span<const double>(&planeOffset, 1);
-        staticMaterial = pl.material;
-        region = boxes_[a];
-      } else {
-        const StaticConvex& piece = convex_[index];
-        normals = piece.normals;
-        offsets = piece.offsets;
-        staticMaterial = piece.material;
-        region = piece.box;
-      }
+      const StaticTarget target = staticTarget(planes_, convex_, isPlane, index, boxes_[a]);
+      const std::span<const Vec3> normals = target.normals;
+      const std::span<const double> offsets = target.offsets();
+      const MaterialId staticMaterial = target.material;
+      const geometry::Box3& region = target.region; // where samples can be inside (world)
       // Visit only the buckets that reach into the region and below every face.
       const SampleBuckets& bk = shapeA.buckets;
       const geometry::Mat3 RA = qA.toRotationMatrix();
