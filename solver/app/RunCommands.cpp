@@ -348,6 +348,12 @@ void runScene(const RunOptions& o) {
   const double end = scene.duration;
   const std::uint64_t firstStep = world.stepCount();
   double maxOverlap = 0.0;
+  // What the scene did not compute: body-steps of movable bodies spent asleep (fixed bodies, such
+  // as a frozen rock underlayer, never cost a step and are not counted).
+  std::size_t movable = 0;
+  for (simulation::BodyId b = 0; b < world.bodies().size(); ++b)
+    if (world.bodies().motionType(b) != dynamics::MotionType::Static) ++movable;
+  double awakeBodySteps = 0.0, movableBodySteps = 0.0;
   const auto start = Clock::now();
   auto lastReport = start;
   auto lastCheckpoint = start;
@@ -372,6 +378,8 @@ void runScene(const RunOptions& o) {
       world.step();
       outputs.update(world);
       maxOverlap = std::max(maxOverlap, world.lastStep().maxOverlap);
+      awakeBodySteps += static_cast<double>(world.bodies().awakeBodies().size());
+      movableBodySteps += static_cast<double>(movable);
       if (signals.received() != 0) {
         stopped = true;
         break;
@@ -439,6 +447,11 @@ void runScene(const RunOptions& o) {
             static_cast<double>(steps) / std::max(wall, 1e-9));
   log->info("final kinetic energy {:.6g} J; deepest overlap seen {:.4g} m", world.bodies().totalKineticEnergy(),
             maxOverlap);
+  if (movableBodySteps > 0.0)
+    log->info("computed: {} of {} bodies movable ({} fixed, never stepped); asleep {:.1f} % of the movable "
+              "body-steps (on average {:.1f} awake)",
+              movable, world.bodies().size(), world.bodies().size() - movable,
+              100.0 * (1.0 - awakeBodySteps / movableBodySteps), awakeBodySteps / static_cast<double>(steps));
   log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
             finalState.string(), checkpointPath.string());
   log->flush();

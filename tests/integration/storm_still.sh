@@ -45,4 +45,9 @@ for i in units:
     fz = f[-1, i, 2]
     assert abs(fz - buoyancy) < 0.01 * buoyancy, (names[i], fz, buoyancy)
 PY
-echo "storm_still: OK"
+# A pack at rest in still water costs almost nothing: the run log says how much was skipped.
+asleep=$(grep -o "asleep [0-9.]* % of the movable body-steps" "$out/run/run.log" | awk '{print $2}')
+[[ -n "$asleep" ]] || fail "run.log does not report the sleeping body-steps"
+/usr/bin/python3 -c "import sys; sys.exit(0 if float('$asleep') > 95.0 else 1)" \
+  || fail "only $asleep % of the body-steps asleep in 600 s of still water (expected > 95 %)"
+echo "storm_still: OK ($asleep % of the body-steps asleep)"
