@@ -135,6 +135,12 @@ struct TextTable {
   std::vector<double> values; ///< row-major
   std::size_t rows() const { return columns == 0 ? 0 : values.size() / columns; }
   double at(std::size_t r, std::size_t c) const { return values[r * columns + c]; }
+  /// Column c of every row (the x, y, z of the points are columns 0, 1, 2).
+  std::vector<double> column(std::size_t c) const {
+    std::vector<double> v(rows());
+    for (std::size_t r = 0; r < v.size(); ++r) v[r] = at(r, c);
+    return v;
+  }
 };
 
 TextTable readTextTable(const fs::path& file) {
@@ -304,14 +310,9 @@ PointSet readPointSet(const fs::path& timeFolder, const std::string& set, const 
     const std::size_t rows = table.rows();
     const std::size_t nc = (cols - 3) / names.size();
     if (!any) {
-      out.x.resize(rows);
-      out.y.resize(rows);
-      out.z.resize(rows);
-      for (std::size_t r = 0; r < rows; ++r) {
-        out.x[r] = table.at(r, 0);
-        out.y[r] = table.at(r, 1);
-        out.z[r] = table.at(r, 2);
-      }
+      out.x = table.column(0);
+      out.y = table.column(1);
+      out.z = table.column(2);
     } else if (rows != out.x.size()) {
       core::failInput(file.string(), "{} points but {} in the other files of set '{}'", rows, out.x.size(), set);
     }
@@ -363,14 +364,9 @@ Surface readRawSurface(const fs::path& timeFolder, const std::string& surface, c
     }
     const std::size_t rows = table.rows(), nc = table.rows() > 0 ? table.columns - 3 : 1;
     if (!any) {
-      s.centreX.resize(rows);
-      s.centreY.resize(rows);
-      s.centreZ.resize(rows);
-      for (std::size_t r = 0; r < rows; ++r) {
-        s.centreX[r] = table.at(r, 0);
-        s.centreY[r] = table.at(r, 1);
-        s.centreZ[r] = table.at(r, 2);
-      }
+      s.centreX = table.column(0);
+      s.centreY = table.column(1);
+      s.centreZ = table.column(2);
     } else {
       if (rows != s.faces()) {
         core::failInput(file.string(), "{} faces but {} in the other fields of surface '{}'", rows, s.faces(), surface);
