@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/SceneReader.hpp"
 
+#include "io/PlacementReader.hpp"
 #include "io/YamlSchema.hpp"
 
 #include "core/Error.hpp"
@@ -725,139 +726,6 @@ void readHydro(const Block& top, Scene& scene) {
 }
 
 
-// ---------------------------------------------------------------------------------------------
-// placement: units to add with `armour place` (docs/placement.md)
-// ---------------------------------------------------------------------------------------------
-
-const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix", "slope", "method", "grid",
-                             "orientation", "crane", "settle", "nest", "lowering", "rocks", "clearance", "seed", "output"};
-const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
-                        "width", "stagger", "jitter", "layers", "layer_shift"};
-const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries"};
-const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
-const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
-const KeyList kNestKeys{"moves", "shift", "tilt_deg", "max_drift"};
-const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
-
-void readPlacement(const Block& top, Scene& scene) {
-  if (!top.has("placement")) return;
-  const Context& ctx = top.context();
-  const Block p(ctx, top.get("placement"), "placement", kPlacementKeys);
-  placement::PlacementSettings& out = scene.placement;
-  out.enabled = true;
-  out.shape = p.text("shape", "the units' shape: a name under shapes: or a generator such as coreloc");
-  out.material = p.text("material", "the units' material name");
-  if (scene.findMaterial(out.material) < 0) p.failValue("material", "no such material under materials:");
-  const int size = p.oneOf({"volume", "dn"}, false, "the units' size");
-  out.volume = size == 0 ? p.number("volume", {"m^3", kPositive, "5 (seed 000 Core-Loc)"})
-                         : std::pow(p.number("dn", {"m", kPositive, "1.71"}), 3);
-  out.namePrefix = p.text("name_prefix", "a name prefix", std::string("unit"));
-  out.slope = p.text("slope", "the name of the static slope the grid lies on", std::string());
-  out.method = static_cast<placement::Method>(p.choice("method", {"crane", "grid"}, 0));
-  out.lowering = static_cast<placement::Lowering>(p.choice("lowering", {"vertical", "slope_normal"}, 0));
-  out.seed = p.integer("seed", 0, "seed of orientations, jitter and rocks", scene.seed);
-  out.clearance = p.number("clearance", {"Dn", kNonNegative, "0.002: the gap a lowered unit stops at"}, out.clearance);
-  out.output = p.text("output", "the placed scene's file name, beside this file", scene.name + "-placed.yaml");
-
-  if (!p.has("grid")) p.failMissing("grid", "where the units go: a grid file or rows, units_per_row, packing_density");
-  const Block g(ctx, p.get("grid"), "placement.grid", kPlacementGridKeys);
-  placement::GridSettings& gs = out.grid;
-  if (g.has("file")) {
-    gs.file = std::filesystem::absolute(ctx.baseDir / g.text("file", "a CSV of x,y[,z] (m)")).lexically_normal().string();
-    for (std::string_view k : {"rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "stagger",
-                               "layers", "layer_shift"})
-      g.refuse(k, "a grid file gives the points; remove this key or the file");
-  } else {
-    gs.rows = static_cast<int>(g.integer("rows", 1, "rows up the slope"));
-    const YAML::Node counts = g.get("units_per_row");
-    if (counts.IsScalar()) {
-      gs.unitsPerRow = {static_cast<int>(g.integer("units_per_row", 1, "units per row, or a list repeated cyclically"))};
-    } else if (counts.IsSequence() && counts.size() > 0) {
-      for (auto v : g.integers("units_per_row", counts.size(), 1, "units per row, e.g. [12, 11]"))
-        gs.unitsPerRow.push_back(static_cast<int>(v));
-    } else {
-      g.failMissing("units_per_row", "units per row: a number or a list repeated cyclically, e.g. [12, 11]");
-    }
-    gs.dx = g.number("dx", {"Dn", kPositive, "2.19 (12 Core-Locs over 45 m)"}, 0.0);
-    const int spacing = g.oneOf({"dy", "packing_density"}, false, "the row spacing up the slope");
-    if (spacing == 0) gs.dy = g.number("dy", {"Dn", kPositive, "0.73"});
-    else gs.packingDensity = g.number("packing_density", {"-", Range{0.0, 2.0, true, false}, "0.625 (seed 000)"});
-    gs.firstRow = g.number("first_row", {"Dn", kAnyNumber, "0.5 up the face from its foot"}, gs.firstRow);
-    gs.stagger = g.number("stagger", {"-", kUnitInterval, "0.5 alternates; 0.4 for a 60 degree parallelogram"}, gs.stagger);
-    gs.layers = static_cast<int>(g.integer("layers", 1, "layers", 1));
-    if (g.has("layer_shift")) {
-      const auto v = g.numbers("layer_shift", 2, {"Dn", kAnyNumber, "[0.5, 0.5] up the slope and along the trunk"});
-      gs.layerShiftS = v[0];
-      gs.layerShiftY = v[1];
-    }
-  }
-  gs.yStart = g.number("y_start", {"m", kAnyNumber, "0: the first wall"}, 0.0);
-  gs.width = g.number("width", {"m", kPositive, "45 (seed 000)"}, 0.0);
-  gs.jitter = g.number("jitter", {"Dn", kNonNegative, "0.05"}, 0.0);
-
-  const Block o(ctx, p.has("orientation") ? p.get("orientation") : YAML::Node(), "placement.orientation",
-                kPlacementOrientationKeys);
-  placement::OrientationSettings& os = out.orientation;
-  os.mode = static_cast<placement::OrientationMode>(o.choice("mode", {"perturbed", "tilted", "random"}, 0));
-  os.slopeFrame = o.choice("frame", {"world", "slope"}, 0) == 1;
-  if (o.has("euler_deg")) {
-    const auto e = o.numbers("euler_deg", 3, {"deg", kAnyNumber, "[0, 0, 0]"});
-    os.phiDeg = e[0];
-    os.thetaDeg = e[1];
-    os.psiDeg = e[2];
-  }
-  os.maxAngleDeg = o.number("max_angle_deg", {"deg", Range{0.0, 180.0, false, false}, "20 (seed 000)"}, os.maxAngleDeg);
-  os.tries = static_cast<int>(o.integer("tries", 1, "orientations tried per unit, the lowest kept", 1));
-  if (os.mode == placement::OrientationMode::Random) {
-    o.refuse("euler_deg", "mode: random draws every orientation; remove euler_deg or use mode: perturbed");
-    o.refuse("max_angle_deg", "mode: random draws every orientation; remove max_angle_deg or use mode: perturbed");
-  }
-
-  const Block c(ctx, p.has("crane") ? p.get("crane") : YAML::Node(), "placement.crane", kCraneKeys);
-  placement::CraneSettings& cs = out.crane;
-  cs.speed = c.number("speed", {"m/s", kNonNegative, "0.5 (seed 001)"}, cs.speed);
-  cs.restSpeed = c.number("rest_speed", {"m/s", kPositive, "0.01"}, cs.restSpeed);
-  cs.minTime = c.number("min_time", {"s", kNonNegative, "0.2"}, cs.minTime);
-  cs.maxTime = c.number("max_time", {"s", kPositive, "5"}, cs.maxTime);
-  if (out.method == placement::Method::Grid && p.has("crane"))
-    p.warnValue("crane", "method: grid releases all units together; the crane settings are not used");
-
-  const Block st(ctx, p.has("settle") ? p.get("settle") : YAML::Node(), "placement.settle", kSettleKeys);
-  placement::SettleSettings& ss = out.settle;
-  ss.restSpeed = st.number("rest_speed", {"m/s", kPositive, "0.005"}, ss.restSpeed);
-  ss.minTime = st.number("min_time", {"s", kNonNegative, "0.5"}, ss.minTime);
-  ss.maxTime = st.number("max_time", {"s", kPositive, "20"}, ss.maxTime);
-  if (ss.minTime > ss.maxTime) st.failValue("min_time", fmt::format("longer than max_time = {} s", ss.maxTime));
-  if (cs.minTime > cs.maxTime) c.failValue("min_time", fmt::format("longer than max_time = {} s", cs.maxTime));
-
-  if (p.has("nest")) {
-    const Block n(ctx, p.get("nest"), "placement.nest", kNestKeys);
-    placement::NestSettings& ns = out.nest;
-    ns.enabled = true;
-    ns.moves = static_cast<int>(n.integer("moves", 1, "failed random moves in a row that end the slide", 24));
-    ns.shift = n.number("shift", {"Dn", kPositive, "0.2"}, ns.shift);
-    ns.tiltDeg = n.number("tilt_deg", {"deg", kNonNegative, "10"}, ns.tiltDeg);
-    ns.maxDrift = n.number("max_drift", {"Dn", kPositive, "0.75"}, ns.maxDrift);
-    if (ns.tiltDeg > 90.0) n.failValue("tilt_deg", "more than 90 deg; a move tilts the unit by at most this angle, give 0 to 90");
-  }
-
-  if (p.has("rocks")) {
-    const Block r(ctx, p.get("rocks"), "placement.rocks", kRockKeys);
-    placement::RockSettings& rs = out.rocks;
-    rs.enabled = true;
-    rs.count = static_cast<int>(r.integer("count", 1, "rocks in the underlayer (3436 in seed 000)"));
-    rs.dn50 = r.number("dn50", {"m", kPositive, "0.79 (W/10 of a 5 m^3 unit)"});
-    rs.grading = r.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, rs.grading);
-    rs.shapes = static_cast<int>(r.integer("shapes", 1, "rock shapes in the library", 12));
-    rs.material = r.text("material", "a material name", out.material);
-    if (scene.findMaterial(rs.material) < 0) r.failValue("material", "no such material under materials:");
-    rs.sEnd = r.number("s_end", {"m", kPositive, "30: rocks up the face to here"}, 0.0);
-    rs.toeLength = r.number("toe_length", {"m", kNonNegative, "4: rocks this far offshore along the toe"}, 0.0);
-    rs.clearance = r.number("clearance", {"Dn50", kNonNegative, "0.002"}, rs.clearance);
-    rs.tries = static_cast<int>(r.integer("tries", 1, "orientations tried per rock", 4));
-  }
-}
-
 } // namespace
 
 Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName) {
@@ -890,7 +758,7 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   readBodies(ctx, top.get("bodies"), namedShapes, scene, top.has("placement"));
   readStatic(ctx, top.get("static"), scene);
   readHydro(top, scene);
-  readPlacement(top, scene);
+  detail::readPlacement(top, scene);
 
   const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });
   if (scene.statics.size() == 0 && !anyFixed && scene.gravity.norm() > 0.0)

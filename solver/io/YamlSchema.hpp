@@ -44,11 +44,11 @@ struct Context {
   std::vector<std::string>* warnings = nullptr;
 };
 
-std::string lineOf(const YAML::Mark& mark) { return mark.line >= 0 ? fmt::format(":{}", mark.line + 1) : ""; }
+inline std::string lineOf(const YAML::Mark& mark) { return mark.line >= 0 ? fmt::format(":{}", mark.line + 1) : ""; }
 
 /// "scene.yaml:12: bodies[3].volume = -2: must be > 0 ..."; `subject` is the key path, with the
 /// value when there is one.
-[[noreturn]] void fail(const Context& c, const YAML::Mark& mark, const std::string& subject, const std::string& message) {
+[[noreturn]] inline void fail(const Context& c, const YAML::Mark& mark, const std::string& subject, const std::string& message) {
   // An empty subject is the top level of the file: its line says nothing, so it is left out.
   if (subject.empty()) throw core::InputError(fmt::format("{}: {}", c.source, message));
   throw core::InputError(fmt::format("{}{}: {}: {}", c.source, lineOf(mark), subject, message));
@@ -64,7 +64,7 @@ inline std::string child(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : fmt::format("{}.{}", path, key);
 }
 
-std::string indexed(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
+inline std::string indexed(const std::string& path, std::size_t i) { return fmt::format("{}[{}]", path, i); }
 
 /// The value as the user wrote it, on one line.
 inline std::string valueText(const YAML::Node& node) {
@@ -142,7 +142,7 @@ struct Num {
   std::string_view example = {};
 };
 
-std::string unitText(std::string_view unit) { return fmt::format("unit: {}", unit); }
+inline std::string unitText(std::string_view unit) { return fmt::format("unit: {}", unit); }
 
 inline std::string fixText(const Num& n) {
   return n.example.empty() ? fmt::format("({})", unitText(n.unit))
