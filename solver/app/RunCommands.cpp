@@ -35,18 +35,6 @@ using Clock = std::chrono::steady_clock;
 /// enough that a long run's log stays readable.
 constexpr double kProgressSeconds = 5.0;
 
-struct RunOptions {
-  std::string scene;
-  double duration = 0.0; ///< overrides the scene's when durationGiven (unit: s)
-  bool durationGiven = false;
-  int threads = 0;       ///< OpenMP threads, 0 = OpenMP's default
-  std::string output;    ///< overrides the scene's output folder when not empty
-  bool restart = false;  ///< continue from <output>/checkpoint.nc
-  // `armour storm`: the storm replayed on the scene (empty for `armour run`).
-  std::string stormFile;          ///< the storm file (netCDF, docs/storm-file.md)
-  std::optional<double> timeOffset; ///< storm time at simulation time 0, instead of the scene's (unit: s)
-};
-
 /// Exit code of a run stopped by SIGINT or SIGTERM (the shell's 128 + SIGINT).
 constexpr int kExitStopped = 130;
 
@@ -184,8 +172,8 @@ void writeStateCsv(const fs::path& path, const io::Scene& scene, const simulatio
   });
 }
 
-void checkScene(const std::string& path) {
-  const io::Scene scene = io::readScene(path);
+void checkScene(const std::string& path, const std::vector<std::string>& sets) {
+  const io::Scene scene = io::readScene(path, sets);
   simulation::BuiltScene built = simulation::buildWorld(scene);
   std::cout << io::describeScene(scene);
   if (!built.warnings.empty()) {
@@ -215,7 +203,7 @@ void checkScene(const std::string& path) {
 /// `armour storm`: put the storm file on the scene's hydro settings (the scene's own `hydro:`
 /// options, or the defaults without one), from the storm's first record if the scene's offset is
 /// earlier, and, without --duration, run to the end of the storm.
-void applyStorm(io::Scene& scene, const RunOptions& o) {
+void applyStorm(io::Scene& scene, const RunRequest& o) {
   hydro::HydroSettings& h = scene.hydro;
   if (h.enabled && h.model != hydro::HydroModel::Storm)
     core::failInput(scene.sourceName, "hydro.model is not `storm`: `armour storm` replays a storm file; set hydro.model: "
@@ -228,6 +216,7 @@ void applyStorm(io::Scene& scene, const RunOptions& o) {
                               "(docs/scene-file.md, Hydrodynamic loads)", scene.sourceName);
   }
   h.storm.file = fs::absolute(o.stormFile).string();
+  if (o.variabilitySeed) h.storm.variability.seed = *o.variabilitySeed;
   if (o.timeOffset) {
     if (!(*o.timeOffset >= 0.0) || !std::isfinite(*o.timeOffset))
       core::failInput("--time-offset", "{} s: give the storm time (s, >= 0) at which the run starts", *o.timeOffset);
@@ -250,14 +239,17 @@ void applyStorm(io::Scene& scene, const RunOptions& o) {
   }
 }
 
-void runScene(const RunOptions& o) {
+
+} // namespace
+
+void runScene(const RunRequest& o) {
   if (o.threads < 0) {
     core::failInput("--threads", "{}: give a positive number of threads, or 0 for OpenMP's default", o.threads);
   }
   if (o.threads > 0) {
     omp_set_num_threads(o.threads); // before the build line, which reports the thread count
   }
-  io::Scene scene = io::readScene(o.scene);
+  io::Scene scene = io::readScene(o.scene, o.sets);
   if (o.durationGiven) {
     if (!(o.duration > 0.0) || !std::isfinite(o.duration)) {
       core::failInput("--duration", "{} s: give a positive simulated time in seconds", o.duration);
@@ -293,10 +285,11 @@ void runScene(const RunOptions& o) {
                     ec.message(), scene.sourceName);
   }
   // The file sink first, then the build line again: the run log must start with it.
-  core::addLogFile(runLog.string());
+  const core::ScopedLogFile logFile(runLog.string());
   auto log = core::logger("run");
   log->info("{}", core::buildInfo());
   log->info("run {} -> {}{}", o.scene, scene.output.folder.string(), o.restart ? " (restart)" : "");
+  for (const std::string& set : o.sets) log->info("--set {} (changes the scene file's setting for this run)", set);
   logLines(log, io::describeScene(scene));
   log->info("scene fingerprint {} (checkpoints are refused by a scene with another one)", fingerprint);
 
@@ -426,8 +419,11 @@ void runScene(const RunOptions& o) {
     // The outputs are closed without a final frame: the restarted run writes the next scheduled one.
     outputs.close();
     checkpoints.write(checkpointPath, world, outputs.schedule());
-    const std::string again = fmt::format("armour run {} --restart{}", o.scene,
-                                          o.output.empty() ? std::string() : " -o " + o.output);
+    std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
+                                    o.output.empty() ? std::string() : " -o " + o.output);
+    if (!o.stormFile.empty()) again += " --storm " + o.stormFile;
+    if (o.variabilitySeed) again += fmt::format(" --variability-seed {}", *o.variabilitySeed);
+    for (const std::string& set : o.sets) again += " --set " + set;
     log->warn("stopped by {} at t = {} s (step {}); checkpoint written to {}; continue with: {}",
               signalName(signals.received()), world.time(), world.stepCount(), checkpointPath.string(), again);
     log->flush();
@@ -457,22 +453,31 @@ void runScene(const RunOptions& o) {
   log->flush();
 }
 
-} // namespace
+
+void addSetOption(CLI::App& command, std::vector<std::string>& sets) {
+  command.add_option("--set", sets,
+                     "KEY=VALUE: change a scene setting for this run, e.g. --set hydro.storm.update_interval=0.5 "
+                     "--set contact.model=fdem --set static[0].friction=0.7 (repeatable; docs/user-guide.md)")
+      ->take_all()
+      ->allow_extra_args(false);
+}
 
 void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
-  auto checkPath = std::make_shared<std::string>();
+  auto c = std::make_shared<RunRequest>();
   auto* check = app.add_subcommand("check", "validate a scene file and build its world (shapes, level sets, static "
                                             "pieces) without running it; prints the resolved settings and time step");
-  check->add_option("scene", *checkPath, "scene file (.yaml), docs/scene-file.md")->required();
-  check->callback([checkPath] { checkScene(*checkPath); });
+  check->add_option("scene", c->scene, "scene file (.yaml), docs/scene-file.md")->required();
+  addSetOption(*check, c->sets);
+  check->callback([c] { checkScene(c->scene, c->sets); });
 
-  auto o = std::make_shared<RunOptions>();
+  auto o = std::make_shared<RunRequest>();
   auto* run = app.add_subcommand("run", "run a scene file: build the world and step it to the scene's duration");
   run->add_option("scene", o->scene, "scene file (.yaml), docs/scene-file.md")->required();
   auto* duration = run->add_option("--duration", o->duration, "simulated time (s), instead of the scene's duration");
   run->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP's default: OMP_NUM_THREADS or all cores)")
       ->capture_default_str();
   run->add_option("-o,--output", o->output, "output folder, instead of the scene's output.folder");
+  addSetOption(*run, o->sets);
   run->add_flag("--restart", o->restart,
                 "continue the run in the output folder from its checkpoint.nc (to the duration, which may be longer); "
                 "the scene may differ in duration and output settings only (docs/user-guide.md)");
@@ -481,7 +486,7 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
     runScene(*o);
   });
 
-  auto s = std::make_shared<RunOptions>();
+  auto s = std::make_shared<RunRequest>();
   auto* storm = app.add_subcommand("storm", "replay a storm file on a placed scene (its hydro: options, or the "
                                             "defaults), to the end of the storm; checkpoints and --restart as run");
   storm->add_option("scene", s->scene, "placed scene file (.yaml), e.g. from armour place")->required();
@@ -493,6 +498,9 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   auto* stormDuration = storm->add_option("--duration", s->duration, "simulated time (s); default: to the storm's end");
   storm->add_option("--threads", s->threads, "OpenMP threads (0 = OpenMP's default)")->capture_default_str();
   storm->add_option("-o,--output", s->output, "output folder, instead of the scene's output.folder");
+  addSetOption(*storm, s->sets);
+  storm->add_option("--variability-seed", s->variabilitySeed,
+                    "seed of the storm's variability draws (a storm realisation), instead of the scene's");
   storm->add_flag("--restart", s->restart, "continue from the output folder's checkpoint.nc (same scene and storm)");
   storm->callback([s, offset, stormDuration] {
     s->durationGiven = stormDuration->count() > 0;

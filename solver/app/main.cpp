@@ -3,6 +3,7 @@
 
 #include "app/AnalyseCommands.hpp"
 #include "app/CommandContext.hpp"
+#include "app/EnsembleCommands.hpp"
 #include "app/PlaceCommands.hpp"
 #include "app/ReportCommands.hpp"
 #include "app/RunCommands.hpp"
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   armour::app::addStormCommands(app, global);
   armour::app::addPlaceCommands(app, global);
   armour::app::addAnalyseCommands(app, global);
+  armour::app::addEnsembleCommands(app, global);
   armour::app::addReportCommands(app, global);
 
   std::string commandLine;

@@ -47,9 +47,10 @@ std::shared_ptr<spdlog::logger> logger(const std::string& module) {
   return created;
 }
 
-void addLogFile(const std::string& path) {
-  auto& r = registry();
-  std::lock_guard lock(r.mutex);
+namespace {
+
+/// Open `path` and attach it to every logger; the registry's mutex must be held.
+spdlog::sink_ptr attachFile(LogRegistry& r, const std::string& path) {
   spdlog::sink_ptr sink;
   try {
     sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path, true);
@@ -62,6 +63,34 @@ void addLogFile(const std::string& path) {
   const auto level = r.loggerLevel();
   spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) {
     l->sinks().push_back(sink);
+    l->set_level(level);
+  });
+  return sink;
+}
+
+} // namespace
+
+void addLogFile(const std::string& path) {
+  auto& r = registry();
+  std::lock_guard lock(r.mutex);
+  attachFile(r, path);
+}
+
+ScopedLogFile::ScopedLogFile(const std::string& path) {
+  auto& r = registry();
+  std::lock_guard lock(r.mutex);
+  sink_ = attachFile(r, path);
+}
+
+ScopedLogFile::~ScopedLogFile() {
+  auto& r = registry();
+  std::lock_guard lock(r.mutex);
+  sink_->flush();
+  std::erase(r.sinks, sink_);
+  r.hasFile = r.sinks.size() > 1; // the console is always there
+  const auto level = r.loggerLevel();
+  spdlog::apply_all([&](const std::shared_ptr<spdlog::logger>& l) {
+    std::erase(l->sinks(), sink_);
     l->set_level(level);
   });
 }

@@ -2,6 +2,7 @@
 #include "io/SceneReader.hpp"
 
 #include "io/PlacementReader.hpp"
+#include "io/SceneOverrides.hpp"
 #include "io/YamlSchema.hpp"
 
 #include "core/Error.hpp"
@@ -728,7 +729,8 @@ void readHydro(const Block& top, Scene& scene) {
 
 } // namespace
 
-Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName) {
+Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName,
+                 const std::vector<std::string>& overrides) {
   Scene scene;
   scene.sourceName = sourceName;
   scene.name = std::filesystem::path(sourceName).stem().string();
@@ -743,6 +745,7 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
                                        "on this line or the one before)",
                                        sourceName, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
+  applyOverrides(root, overrides);
   if (!root.IsDefined() || root.IsNull())
     throw core::InputError(fmt::format("{}: the scene is empty; it needs at least 'materials', 'bodies' and 'duration' "
                                        "(docs/scene-file.md has an example)",
@@ -766,7 +769,7 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   return scene;
 }
 
-Scene readScene(const std::filesystem::path& path) {
+Scene readScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw core::InputError(fmt::format("{}: cannot open the scene file (looked for {})", path.string(),
@@ -774,7 +777,7 @@ Scene readScene(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  return parseScene(text.str(), folder, path.string());
+  return parseScene(text.str(), folder, path.string(), overrides);
 }
 
 } // namespace armour::io

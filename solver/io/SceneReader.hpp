@@ -16,16 +16,19 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace armour::io {
 
-/// Read and resolve a scene file; relative paths in it are relative to its folder.
+/// Read and resolve a scene file; relative paths in it are relative to its folder. `overrides`
+/// are --set KEY=VALUE changes applied before the file is checked (io/SceneOverrides.hpp).
 /// @throws core::InputError for an unreadable file or any schema violation.
-Scene readScene(const std::filesystem::path& path);
+Scene readScene(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
 
 /// Parse scene text. `baseDir` resolves relative paths; `sourceName` names the text in messages
 /// and its stem names the scene (default output folder "<stem>-out").
 /// @throws core::InputError as readScene.
-Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName);
+Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, const std::string& sourceName,
+                 const std::vector<std::string>& overrides = {});
 
 } // namespace armour::io

@@ -826,3 +826,49 @@ TEST(SceneHydro, ErrorsNameTheKeyAndTheFix) {
                                         "depth_at_toe: 12}\n"),
                   "give one of 'angle_deg' or 'tan' or 'cot'");
 }
+
+// --set KEY=VALUE (io/SceneOverrides): a changed setting reads as if the file said it; missing
+// blocks are created; list items are reached by index; bad paths and values name the option.
+std::string overrideError(const std::string& yaml, const std::vector<std::string>& sets) {
+  try {
+    (void)parseScene(yaml, kScenes, "test.yaml", sets);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for the overrides of:\n" << yaml;
+  return {};
+}
+
+TEST(SceneOverrides, ChangeValuesCreateBlocksAndReachListItems) {
+  const std::string yaml = "duration: 2\nmaterials:\n  concrete: {density: 2400, friction: 0.6, restitution: 0.1}\n"
+                           "static:\n  - {type: plane, name: floor, material: concrete, point: [0, 0, 0], "
+                           "normal: [0, 0, 1]}\n"
+                           "bodies:\n  - {shape: cube, volume: 1, material: concrete, position: [0, 0, 1]}\n";
+  const Scene base = parseScene(yaml, kScenes, "t.yaml");
+  const Scene s = parseScene(yaml, kScenes, "t.yaml",
+                             {"duration=7.5", "contact.model=fdem", "materials.concrete.friction=0.8",
+                              "bodies[0].position=[1, 2, 3]", "static[0].normal=[0, 0.6, 0.8]", "seed=42"});
+  EXPECT_EQ(base.duration, 2.0);
+  EXPECT_EQ(s.duration, 7.5);
+  EXPECT_EQ(s.contact.model, ContactModel::Fdem); // the contact block did not exist: created
+  EXPECT_EQ(s.materials[0].frictionStatic, 0.8);
+  EXPECT_EQ(s.bodies[0].position, Vec3(1, 2, 3));
+  EXPECT_EQ(s.seed, 42u);
+  // The last --set of a key wins, as on a command line.
+  EXPECT_EQ(parseScene(yaml, kScenes, "t.yaml", {"duration=3", "duration=4"}).duration, 4.0);
+  // The overrides go through the same schema checks as the file.
+  EXPECT_CONTAINS(overrideError(yaml, {"contact.modle=fdem"}), "contact.modle: unknown key (did you mean 'model'?)");
+  EXPECT_CONTAINS(overrideError(yaml, {"duration=-1"}), "duration = -1: must be > 0");
+}
+
+TEST(SceneOverrides, BadOptionsNameTheOptionAndTheFix) {
+  const std::string yaml = oneBody();
+  EXPECT_CONTAINS(overrideError(yaml, {"duration"}), "--set duration: give KEY=VALUE");
+  EXPECT_CONTAINS(overrideError(yaml, {"duration="}), "--set duration=: the value is empty");
+  EXPECT_CONTAINS(overrideError(yaml, {"hydro..file=x"}), "has an empty part");
+  EXPECT_CONTAINS(overrideError(yaml, {"bodies[3].volume=2"}), "'bodies' has 1 items; give an index from 0 to 0");
+  EXPECT_CONTAINS(overrideError(yaml, {"bodies[x].volume=2"}), "a list index is a whole number in brackets");
+  EXPECT_CONTAINS(overrideError(yaml, {"duration.value=2"}), "'duration' is a single value or a list in the scene");
+  EXPECT_CONTAINS(overrideError(yaml, {"materials[0].density=2"}), "'materials' is not a list in the scene");
+  EXPECT_CONTAINS(overrideError(yaml, {"gravity=[0, 0"}), "is not valid YAML");
+}
