@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/PlaceCommands.hpp"
 
+#include "app/RunCommands.hpp"
+#include "io/SceneOverrides.hpp"
+
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "placement/PlacedScene.hpp"
@@ -26,6 +29,7 @@ struct PlaceOptions {
   std::string file;
   int threads = 0;    ///< OpenMP threads, 0 = OpenMP's default
   std::string output; ///< overrides the placed scene's path when not empty
+  std::vector<std::string> sets; ///< --set changes of the placement file
 };
 
 void placeScene(const PlaceOptions& o) {
@@ -35,7 +39,7 @@ void placeScene(const PlaceOptions& o) {
   if (!in) core::failInput(o.file, "cannot open the placement file");
   std::ostringstream text;
   text << in.rdbuf();
-  const io::Scene scene = io::readScene(o.file);
+  const io::Scene scene = io::readScene(o.file, o.sets);
   if (!scene.placement.enabled)
     core::failInput(o.file, "no `placement:` block; `armour place` needs one (docs/placement.md has examples), or use "
                             "`armour run` for a scene without one");
@@ -61,7 +65,8 @@ void placeScene(const PlaceOptions& o) {
     std::cerr << "error: the placement stopped: " << e.what() << "\n";
     std::exit(3);
   }
-  placement::writePlacementOutputs(text.str(), result, scenePath, scene.output.folder);
+  placement::writePlacementOutputs(io::applyOverridesToText(text.str(), o.sets, o.file), result, scenePath,
+                                   scene.output.folder);
   std::cout << placement::summaryText(result);
   std::cout << fmt::format("placed scene: {}\ntables: {}/units.csv, placement.json, placement.txt\n",
                            scenePath.string(), scene.output.folder.string());
@@ -76,6 +81,7 @@ void addPlaceCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   place->add_option("file", o->file, "scene file with a placement: block")->required()->check(CLI::ExistingFile);
   place->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP's default)");
   place->add_option("--output", o->output, "the placed scene's path (default: placement.output beside the file)");
+  addSetOption(*place, o->sets);
   place->callback([o] { placeScene(*o); });
 }
 

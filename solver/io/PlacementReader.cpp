@@ -21,12 +21,13 @@ using namespace schema;
 // ---------------------------------------------------------------------------------------------
 
 const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix", "slope", "method", "grid",
-                             "orientation", "crane", "settle", "nest", "lowering", "rocks", "clearance", "seed", "output"};
+                             "orientation", "crane", "settle", "settle_each", "nest", "lowering", "rocks", "clearance", "seed", "output"};
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
 const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries"};
 const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
 const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
+const KeyList kSettleEachKeys{"damping", "rest_speed", "rest_time", "max_time", "max_drift", "hold_at_max_drift"};
 const KeyList kNestKeys{"moves", "shift", "tilt_deg", "max_drift"};
 const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
 
@@ -123,6 +124,21 @@ void readPlacement(const schema::Block& top, Scene& scene) {
   ss.maxTime = st.number("max_time", {"s", kPositive, "20"}, ss.maxTime);
   if (ss.minTime > ss.maxTime) st.failValue("min_time", fmt::format("longer than max_time = {} s", ss.maxTime));
   if (cs.minTime > cs.maxTime) c.failValue("min_time", fmt::format("longer than max_time = {} s", cs.maxTime));
+
+  if (p.has("settle_each")) {
+    const Block e(ctx, p.get("settle_each"), "placement.settle_each", kSettleEachKeys);
+    placement::SettleEachSettings& es = out.settleEach;
+    es.enabled = true;
+    es.damping = e.number("damping", {"1/s", kNonNegative, "2: velocities decay as exp(-2 t)"}, es.damping);
+    es.restSpeed = e.number("rest_speed", {"m/s", kPositive, "0.02"}, es.restSpeed);
+    es.restTime = e.number("rest_time", {"s", kNonNegative, "0.1"}, es.restTime);
+    es.maxTime = e.number("max_time", {"s", kPositive, "6"}, es.maxTime);
+    es.maxDrift = e.number("max_drift", {"Dn", kPositive, "1"}, es.maxDrift);
+    es.holdAtMaxDrift = e.flag("hold_at_max_drift", es.holdAtMaxDrift);
+    if (es.restTime >= es.maxTime)
+      e.failValue("rest_time", fmt::format("not shorter than max_time = {} s: no unit could be found at rest; give a "
+                                           "rest_time below max_time (0.1 s of 6 s)", es.maxTime));
+  }
 
   if (p.has("nest")) {
     const Block n(ctx, p.get("nest"), "placement.nest", kNestKeys);

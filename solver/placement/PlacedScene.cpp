@@ -91,7 +91,13 @@ std::string summaryText(const PlacementResult& r) {
     t += fmt::format("layer thickness     {:.3f} m = {:.3f} Dn\n", s.layerThickness, s.layerThickness / s.dn);
     t += fmt::format("porosity            {:.3f}\n", s.porosity);
   }
-  t += fmt::format("largest move        {:.3f} Dn from release\n", s.maxDisplacementDn);
+  t += fmt::format("largest move        {:.3f} Dn from release (median {:.3f} Dn)\n", s.maxDisplacementDn,
+                   s.medianDisplacementDn);
+  if (s.medianSettleDriftDn > 0.0 || s.settleCappedUnits > 0 || !s.drifted.empty())
+    t += fmt::format("own settles         median drift {:.3f} Dn from first touch, {} units frozen before they rested\n",
+                     s.medianSettleDriftDn, s.settleCappedUnits);
+  if (!s.drifted.empty())
+    t += fmt::format("drifted in settle   {} units: {}\n", s.drifted.size(), fmt::join(s.drifted, ", "));
   if (s.cappedUnits > 0)
     t += fmt::format("crane time cap      {} units released before the pack was at rest\n", s.cappedUnits);
   if (!s.moving.empty())
@@ -107,10 +113,13 @@ std::string summaryJson(const PlacementResult& r) {
       "{{\n  \"scene\": {},\n  \"units\": {},\n  \"rocks\": {},\n  \"dn_m\": {},\n  \"simulated_time_s\": {},\n"
       "  \"wall_time_s\": {},\n  \"grid_packing_density\": {},\n  \"packing_density\": {},\n  \"window_units\": {},\n"
       "  \"window_area_m2\": {},\n  \"layer_thickness_m\": {},\n  \"porosity\": {},\n  \"max_displacement_dn\": {},\n"
-      "  \"capped_units\": {},\n  \"still_moving\": {},\n  \"moved_more_than_1dn\": {}\n}}\n",
+      "  \"median_displacement_dn\": {},\n  \"capped_units\": {},\n  \"settle_capped_units\": {},\n"
+      "  \"median_settle_drift_dn\": {},\n  \"settle_drifted\": {},\n  \"still_moving\": {},\n"
+      "  \"moved_more_than_1dn\": {}\n}}\n",
       jsonString(r.scene.sourceName), s.units, s.rocks, num(s.dn), num(s.simulatedTime), num(s.wallSeconds),
       num(s.gridPackingDensity), num(s.packingDensity), s.windowUnits, num(s.windowArea), num(s.layerThickness),
-      num(s.porosity), num(s.maxDisplacementDn), s.cappedUnits, jsonList(s.moving), jsonList(s.moved));
+      num(s.porosity), num(s.maxDisplacementDn), num(s.medianDisplacementDn), s.cappedUnits, s.settleCappedUnits,
+      num(s.medianSettleDriftDn), jsonList(s.drifted), jsonList(s.moving), jsonList(s.moved));
 }
 
 std::string unitsCsv(const PlacementResult& r) {

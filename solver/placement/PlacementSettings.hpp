@@ -93,6 +93,34 @@ struct SettleSettings {
   double maxTime = 30.0;            ///< at most (unit: s); units still moving are reported
 };
 
+/// The per-unit settle (`settle_each:`, both methods; POSITIT's sequential deposition): a unit
+/// lowered to its first touch sits on one or two points and is not at rest, so released with the
+/// others it falls and the rows ride down the face. With this block each unit, after its lowering
+/// (and nesting), is simulated alone -- every unit before it and every rock held fixed, so one
+/// body is awake -- under gravity with a viscous drag on its velocity and spin, until it rests,
+/// and is then frozen where it rests; the next unit is lowered onto it. At the end all units are
+/// released together and the pack settles as without it (SettleSettings).
+struct SettleEachSettings {
+  bool enabled = false;             ///< the `settle_each:` block is given
+  /// Drag rate on the settling unit: its velocity and angular velocity decay as exp(-damping t)
+  /// besides gravity and contacts (a drag force damping m v). It takes out the rebounds and the
+  /// rocking that would otherwise make a lone unit slow to come to rest; a unit sliding on a face
+  /// reaches at most a_net / damping (unit: 1/s).
+  double damping = 2.0;
+  /// At rest when the centroid speed and |omega| times the unit's radius (the speed of its farthest
+  /// point) both stay below this for restTime (unit: m/s). With the drag a unit still sliding moves
+  /// at a_net / damping: 0.02 m/s at 2/s leaves out-of-balance accelerations below 0.004 g.
+  double restSpeed = 0.02;
+  double restTime = 0.1;            ///< how long the speeds must stay below restSpeed (unit: s)
+  double maxTime = 6.0;             ///< cap per unit: frozen where it is and counted (unit: s)
+  /// Units whose settle takes their centroid farther than this from their first touch are
+  /// reported (unit: Dn).
+  double maxDrift = 1.0;
+  /// Stop such a unit where it crosses maxDrift (frozen there, not at rest) instead of letting it
+  /// slide on: the grid is kept, the unit may move again at the final release (unit: -).
+  bool holdAtMaxDrift = false;
+};
+
 /// Nesting (both methods): after its lowering, each unit is slid and tilted geometrically into the
 /// lowest nearby position it can reach without overlap (Deposit::slideDown), within maxDrift of its
 /// grid point. It stands in for a crane operator working a unit into the hole between the units
@@ -126,6 +154,7 @@ struct PlacementSettings {
   RockSettings rocks;
   SettleSettings settle;
   NestSettings nest;
+  SettleEachSettings settleEach;
   Lowering lowering = Lowering::Vertical;
   double clearance = 0.002;         ///< gap left between a lowered unit and what it lands on (unit: Dn)
   std::uint64_t seed = 1;           ///< orientations, jitter and rocks (unit: -)

@@ -138,6 +138,63 @@ std::pair<double, bool> settle(World& world, std::size_t firstBody, double restS
   }
 }
 
+/// The median of a non-empty list (the mean of the middle two for an even count).
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// How a unit's own settle ended (settleAlone).
+struct LoneSettle {
+  double time = 0.0;   ///< simulated (unit: s)
+  double drift = 0.0;  ///< centroid distance from where it started (unit: m)
+  bool rested = false; ///< at rest (or asleep) before the cap
+  bool held = false;   ///< stopped at the drift limit
+};
+
+/// The per-unit settle (SettleEachSettings): step the World with body b the only body awake (the
+/// caller froze the others), its velocity and spin decaying as exp(-damping t) on top of gravity
+/// and contacts, until both its centroid speed and |omega| r (r its radius) have stayed below
+/// restSpeed for restTime, or it sleeps, or (with holdAtMaxDrift) its centroid is farther than
+/// maxDrift from where it started, or maxTime. The cost is that of one awake body.
+LoneSettle settleAlone(World& world, BodyId b, const SettleEachSettings& s, double dn) {
+  auto& bodies = world.bodies();
+  const double dt = world.timeStep();
+  // The drag as an exact decay over the step, applied between steps: unconditionally stable and
+  // it only removes energy, so the World's energy guard sees nothing unusual.
+  const double decay = std::exp(-s.damping * dt);
+  const double radius = world.shape(world.bodyShape(b)).radius * world.bodyScale(b);
+  const Vec3 from = bodies.position(b);
+  const double start = world.time();
+  double still = 0.0;
+  LoneSettle out;
+  for (;;) {
+    world.step();
+    out.time = world.time() - start;
+    out.drift = (bodies.position(b) - from).norm();
+    if (!bodies.isAwake(b)) { // asleep: at rest by the scene's own (stricter) sleep criterion
+      out.rested = true;
+      break;
+    }
+    bodies.setVelocity(b, decay * bodies.velocity(b));
+    bodies.setWorldAngularVelocity(b, decay * bodies.worldAngularVelocity(b));
+    const bool slow = bodies.velocity(b).norm() < s.restSpeed &&
+                      bodies.worldAngularVelocity(b).norm() * radius < s.restSpeed;
+    still = slow ? still + dt : 0.0;
+    if (still >= s.restTime) {
+      out.rested = true;
+      break;
+    }
+    if (s.holdAtMaxDrift && out.drift > s.maxDrift * dn) {
+      out.held = true;
+      break;
+    }
+    if (out.time >= s.maxTime) break;
+  }
+  return out;
+}
+
 /// Slope frame of the rock deposit: x up the face, z out of it (a rotation about y by -alpha).
 Quat slopeFrame(double tanAlpha) { return Quat(Eigen::AngleAxisd(-std::atan(tanAlpha), Vec3::UnitY())); }
 
@@ -353,6 +410,18 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   };
   Deposit deposit = rebuildDeposit();
   const int total = static_cast<int>(grid.size());
+  // settle_each: every movable body but the one settling is held fixed (Static) until the final
+  // release; the scene's own movable bodies too, so one body is awake at a time.
+  const bool settleEach = ps.settleEach.enabled && options.dynamics;
+  std::vector<BodyId> frozen;
+  if (settleEach) {
+    for (BodyId b = 0; b < firstUnitBody; ++b) {
+      if (world.bodies().motionType(b) == dynamics::MotionType::Static) continue;
+      world.bodies().setMotionType(b, dynamics::MotionType::Static);
+      frozen.push_back(b);
+    }
+  }
+  std::vector<double> settleDrifts;
   const double step = 0.05 * dn;
   for (int i = 0; i < total; ++i) {
     const GridPoint& g = grid[static_cast<std::size_t>(i)];
@@ -403,7 +472,27 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     rec.gridPoint = spec.position;
     rec.releaseOrientation = bestNatural;
     rec.releaseTime = world.time();
-    if (ps.method == Method::Crane && options.dynamics) {
+    rec.touchPoint = spec.position;
+    if (settleEach) {
+      // Its own settle, everything else fixed, then frozen where it rests: the next unit is
+      // lowered onto it as it lies.
+      if (ps.method == Method::Crane) spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed);
+      rec.body = world.addBody(spec);
+      const LoneSettle lone = settleAlone(world, rec.body, ps.settleEach, dn);
+      world.bodies().setMotionType(rec.body, dynamics::MotionType::Static);
+      frozen.push_back(rec.body);
+      rec.gridPoint = world.bodies().position(rec.body);
+      rec.releaseOrientation = world.naturalOrientation(rec.body).normalized();
+      rec.restTime = lone.time;
+      rec.capped = !lone.rested;
+      rec.settleDrift = lone.drift / dn;
+      settleDrifts.push_back(rec.settleDrift);
+      if (!lone.rested) ++result.summary.settleCappedUnits;
+      if (rec.settleDrift > ps.settleEach.maxDrift) result.summary.drifted.push_back(name);
+      log->debug("{}: own settle {:.3f} s, {}, drift {:.3f} Dn", name, lone.time,
+                 lone.rested ? "at rest" : (lone.held ? "held at max drift" : "time cap"), rec.settleDrift);
+      addWorldBody(deposit, world, rec.body, toUnitFrame);
+    } else if (ps.method == Method::Crane && options.dynamics) {
       spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed); // along the lowering direction
       rec.body = world.addBody(spec);
       const auto [t, rest] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime);
@@ -423,6 +512,18 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   // by more than kCreep: a unit that fell asleep while creeping down the face moves on when woken,
   // as it would when the placed scene is run.
   constexpr double kCreep = 1.0e-4; // m: a tenth of the 1 mm a pack at rest may drift in 60 s
+  if (settleEach) {
+    // The final release: every unit (and movable scene body) from where its own settle left it.
+    for (BodyId b : frozen) world.bodies().setMotionType(b, dynamics::MotionType::Dynamic);
+    world.motionTypesChanged();
+    for (UnitRecord& u : result.units) u.releaseTime = world.time();
+    if (!settleDrifts.empty()) {
+      result.summary.medianSettleDriftDn = median(settleDrifts);
+    }
+    log->info("units settled one by one: {} frozen before they rested, {} drifted more than {} Dn, median drift "
+              "{:.3f} Dn", result.summary.settleCappedUnits, result.summary.drifted.size(), ps.settleEach.maxDrift,
+              result.summary.medianSettleDriftDn);
+  }
   const double settleStart = world.time();
   bool rest = false;
   for (int round = 0; options.dynamics && world.time() - settleStart < ps.settle.maxTime; ++round) {
@@ -449,12 +550,17 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   for (const UnitRecord& u : result.units)
     scene.bodies.push_back(sceneBody(world, u.body, u.name, unitShape, unitMaterial, ps.volume, false));
   const auto& bodies = world.bodies();
+  std::vector<double> moves;
   for (const UnitRecord& u : result.units) {
     const double moved = (bodies.position(u.body) - u.gridPoint).norm() / dn;
+    moves.push_back(moved);
     result.summary.maxDisplacementDn = std::max(result.summary.maxDisplacementDn, moved);
     if (moved > 1.0) result.summary.moved.push_back(u.name);
     const double speed = bodies.velocity(u.body).norm();
     if (bodies.isAwake(u.body) && speed > ps.settle.restSpeed) result.summary.moving.push_back(u.name);
+  }
+  if (!moves.empty()) {
+    result.summary.medianDisplacementDn = median(moves);
   }
 
   // Summary measures over the window of the rows.

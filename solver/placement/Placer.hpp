@@ -13,7 +13,10 @@
 ///       - crane: each is released at the crane speed the moment it touches, and the pack is
 ///         simulated until its kinetic energy falls below 1/2 M v_rest^2 (or a time cap), then
 ///         the next is lowered onto the pack as it now lies;
-///       - grid: all are lowered first (each onto those before it), then released together.
+///       - grid: all are lowered first (each onto those before it), then released together;
+///       - with settle_each (either method): each is simulated alone (the others held fixed)
+///         until it rests, frozen there, and the next is lowered onto it; all are released
+///         together at the end.
 ///  3. The pack settles (same criterion), and the placed scene, the per-unit table and a summary
 ///     (packing density achieved, layer thickness, porosity, units that did not settle or moved
 ///     off their place) are made.
@@ -32,11 +35,18 @@ using Vec3 = Eigen::Vector3d;
 /// What happened to one unit.
 struct UnitRecord {
   std::string name;
-  Vec3 gridPoint = Vec3::Zero();   ///< where it was released: (x, y) of its grid point, z at first contact (unit: m)
+  /// Where it was released: its first touch (its grid point lowered to first contact), or with
+  /// settle_each where its own settle left it (unit: m).
+  Vec3 gridPoint = Vec3::Zero();
   Eigen::Quaterniond releaseOrientation = Eigen::Quaterniond::Identity(); ///< natural frame -> world at release
+  Vec3 touchPoint = Vec3::Zero();  ///< centroid at first touch, after nesting (unit: m)
+  double settleDrift = 0.0;        ///< settle_each: distance its own settle took it from its first touch (unit: Dn)
   double releaseTime = 0.0;        ///< simulated time of release (unit: s)
-  double restTime = 0.0;           ///< crane: simulated time until the pack was at rest (unit: s)
-  bool capped = false;             ///< crane: the next unit went before the pack was at rest (unit: -)
+  /// crane: simulated time until the pack was at rest; settle_each: of the unit's own settle (unit: s)
+  double restTime = 0.0;
+  /// crane: the next unit went before the pack was at rest; settle_each: the unit was frozen at
+  /// max_time or held at max drift before it rested (unit: -)
+  bool capped = false;
   std::size_t body = 0;            ///< World body index
 };
 
@@ -57,6 +67,10 @@ struct PlacementSummary {
   double layerThickness = 0.0;
   double porosity = 0.0;           ///< 1 - N V / (A t) over the window (unit: -)
   int cappedUnits = 0;             ///< crane: released before the pack was at rest (unit: -)
+  int settleCappedUnits = 0;       ///< settle_each: frozen at max_time (or held at max drift) before they rested (unit: -)
+  std::vector<std::string> drifted; ///< settle_each: units whose own settle took them more than max_drift from first touch
+  double medianSettleDriftDn = 0.0; ///< settle_each: median drift of the units' own settles (unit: Dn)
+  double medianDisplacementDn = 0.0; ///< median distance from release to the end (unit: Dn)
   std::vector<std::string> moving; ///< units still moving faster than the rest speed at the end
   std::vector<std::string> moved;  ///< units that ended more than 1 Dn from where they were released
   double maxDisplacementDn = 0.0;  ///< largest distance from release to the end (unit: Dn)

@@ -276,6 +276,12 @@ public:
   /// boxes on the next step (awake bodies' boxes are recomputed every step anyway).
   void invalidateBoxes() { boxesValid_ = false; }
 
+  /// Bodies were switched between static and dynamic by hand (bodies().setMotionType), e.g. the
+  /// units a placement freezes while the next one settles and releases at the end: the cached
+  /// forces and boxes are stale and the energy guard must take its reference again, as when a
+  /// body is added (the released bodies bring their potential energy into the count).
+  void motionTypesChanged();
+
   /// The complete dynamic state, for checkpoints (WorldState.hpp).
   [[nodiscard]] WorldState captureState() const;
   /// Continue from a captured state of a world built from the same scene. Throws

@@ -18,6 +18,13 @@ void World::wakeAll() {
   }
 }
 
+void World::motionTypesChanged() {
+  forcesReady_ = false;
+  boxesValid_ = false;
+  energyStarted_ = false;
+  energyPeak_ = 0.0;
+}
+
 void World::updateSleep(double dt) {
   const SleepSettings& st = settings_.sleep;
   if (!st.enabled) {

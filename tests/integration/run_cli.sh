@@ -43,6 +43,13 @@ set +e; msg=$("$armour" --log-level off check "$out/long-step.yaml" 2>&1); code=
 [ $code -eq 2 ] || fail "a 10 ms time step was accepted (exit $code): $msg"
 grep -q "long-step.yaml: time_step: .*stability limit" <<< "$msg" || fail "time-step error unclear: $msg"
 
+# --set KEY=VALUE changes a setting for one command; a misspelt key is refused like one in the file.
+msg=$("$armour" --log-level warn check "$scenes/run-smoke.yaml" --set duration=7 2>&1)
+grep -q "^  duration = 7 s" <<< "$msg" || fail "--set duration=7 not applied: $msg"
+set +e; msg=$("$armour" --log-level off check "$scenes/run-smoke.yaml" --set contact.modle=fdem 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "--set contact.modle: expected exit 2, got $code: $msg"
+grep -q "run-smoke.yaml: contact.modle: unknown key (did you mean 'model'?)" <<< "$msg" || fail "--set typo unclear: $msg"
+
 # A run: the smoke scene (two cubes dropped on a floor, 0.3 s), written to --output.
 set +e; log=$("$armour" run "$scenes/run-smoke.yaml" --threads 1 -o "$out/smoke" 2>&1); code=$?; set -e
 [ $code -eq 0 ] || fail "run exited $code: $log"
