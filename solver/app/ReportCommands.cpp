@@ -547,7 +547,9 @@ void report(const ReportOptions& o) {
   for (const auto& p : xBefore) unitsMean += p / static_cast<double>(nu);
   const StormSummary st = summariseStorm(stormPath, scene, o, unitsMean, runStart, runEnd);
   // Wave statistics of fewer than 3 waves say little (a short file, mostly ramp-up): then the
-  // provenance's values, and Hm0 as the last resort.
+  // provenance's values. Without those there is no sea state (a solitary wave, a single bore): the
+  // design formulas, which take Hs of an irregular sea, are then not applicable unless --hs gives one.
+  // Hm0 of such a record is still reported with the storm, not used.
   constexpr std::size_t kMinWaves = 3;
   const bool measured = st.waves.waves >= kMinWaves;
   double hs = o.hs, tm = o.tm, tp = o.tp;
@@ -560,8 +562,10 @@ void report(const ReportOptions& o) {
       hs = st.provHs;
       hsSource = fmt::format("the storm file's provenance ({} waves at the gauge)", st.waves.waves);
     } else {
-      hs = st.waves.hm0;
-      hsSource = fmt::format("Hm0 of eta at the gauge ({} waves)", st.waves.waves);
+      hs = kNaN;
+      hsSource = fmt::format("none: {} waves at the gauge and no Hs in the storm's provenance (a solitary wave or a "
+                             "short record has no sea state); give --hs for the design formulas",
+                             st.waves.waves);
     }
   }
   if (!std::isfinite(tm) && measured) tm = st.waves.tm;

@@ -448,6 +448,8 @@ void runScene(const RunRequest& o) {
               "body-steps (on average {:.1f} awake)",
               movable, world.bodies().size(), world.bodies().size() - movable,
               100.0 * (1.0 - awakeBodySteps / movableBodySteps), awakeBodySteps / static_cast<double>(steps));
+  for (const auto& stage : world.loadStages())
+    if (const std::string s = stage->summary(); !s.empty()) log->info("{}", s);
   log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
             finalState.string(), checkpointPath.string());
   log->flush();

@@ -278,7 +278,18 @@ void StormLoads::evaluate(const simulation::World& world, double stormTime, std:
     counters_.wetElements += wetCount_[b];
     counters_.skippedBodies += skipped_[b];
     counters_.evaluatedBodies += elementCount_[b] > 0 ? 1 : 0;
+    ++counters_.bodyEvaluationsTotal;
+    counters_.skippedTotal += skipped_[b];
   }
+}
+
+std::string StormLoads::summary() const {
+  const auto& c = counters_;
+  if (c.bodyEvaluationsTotal == 0) return {};
+  return fmt::format("hydro: {} load updates; {} of {} unit evaluations skipped ({:.1f} %: dry, above the water, or "
+                     "outside the storm grid, no surface element sampled)",
+                     c.updates, c.skippedTotal, c.bodyEvaluationsTotal,
+                     100.0 * static_cast<double>(c.skippedTotal) / static_cast<double>(c.bodyEvaluationsTotal));
 }
 
 void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const std::vector<double>& etaColumns,

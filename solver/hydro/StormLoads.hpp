@@ -78,6 +78,8 @@ struct StormLoadCounters {
   std::size_t evaluatedElements = 0; ///< elements sampled (both evaluations when Interpolate starts) (unit: -)
   std::size_t wetElements = 0;       ///< of which wet (same) (unit: -)
   std::uint64_t updates = 0;         ///< load updates since construction or restore (unit: -)
+  /// Since construction or restore: loaded-body evaluations, and those skipped (unit: -).
+  std::uint64_t bodyEvaluationsTotal = 0, skippedTotal = 0;
 };
 
 class StormLoads final : public simulation::LoadStage {
@@ -93,6 +95,7 @@ public:
   ~StormLoads() override;
 
   [[nodiscard]] std::string name() const override { return "hydro"; }
+  [[nodiscard]] std::string summary() const override;
   void apply(const simulation::World& world, double time, std::span<dynamics::Vec3> force,
              std::span<dynamics::Vec3> torque) override;
   [[nodiscard]] std::vector<double> saveState() const override;

@@ -42,6 +42,10 @@ public:
   [[nodiscard]] virtual std::vector<double> saveState() const { return {}; }
   /// Throws core::InputError if the state does not fit (another scene).
   virtual void restoreState(const std::vector<double>& /*state*/) {}
+
+  /// One line for the end of the run log: what the stage computed and what it skipped since it
+  /// was made (a run's restart counts from the restart). Empty: nothing to say.
+  [[nodiscard]] virtual std::string summary() const { return {}; }
 };
 
 } // namespace armour::simulation

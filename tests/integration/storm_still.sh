@@ -50,4 +50,14 @@ asleep=$(grep -o "asleep [0-9.]* % of the movable body-steps" "$out/run/run.log"
 [[ -n "$asleep" ]] || fail "run.log does not report the sleeping body-steps"
 /usr/bin/python3 -c "import sys; sys.exit(0 if float('$asleep') > 95.0 else 1)" \
   || fail "only $asleep % of the body-steps asleep in 600 s of still water (expected > 95 %)"
-echo "storm_still: OK ($asleep % of the body-steps asleep)"
+grep -q "hydro: [0-9]* load updates; 0 of [0-9]* unit evaluations skipped (0.0 %" "$out/run/run.log" \
+  || fail "a submerged pack reported skipped load evaluations: $(grep 'load updates' "$out/run/run.log")"
+# Dry units need no fluid loads: with the water 3.4 m below the lowest unit every evaluation is
+# skipped, and the log says so.
+"$armour" --log-level warn storm-file synth still --out "$out/dry.nc" --x-min -6 --x-max 16 --z-min -8 --z-max 12 \
+  --voxel 0.5 --swl -2 --depth 4 --trunk-origin -4 --trunk-length 8 --duration 2 --dt 0.5
+"$armour" --log-level warn storm "$out/dolos-placed.yaml" --storm "$out/dry.nc" --threads 1 -o "$out/dry" \
+  > "$out/dry.txt" 2>&1 || fail "armour storm (dry) failed: $(cat "$out/dry.txt")"
+grep -q "hydro: 20 load updates; 80 of 80 unit evaluations skipped (100.0 %" "$out/dry/run.log" \
+  || fail "dry units were not reported skipped: $(grep 'load updates' "$out/dry/run.log")"
+echo "storm_still: OK ($asleep % of the body-steps asleep; dry units skipped)"
