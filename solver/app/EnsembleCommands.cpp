@@ -354,7 +354,7 @@ void ensemble(const EnsembleOptions& o) {
     }
     rows += done ? ",done\n" : ",failed\n";
   }
-  std::string table_ = fmt::format("ensemble of {} members of {} (packing seeds {}..{}{}), mean +- standard deviation"
+  std::string summary = fmt::format("ensemble of {} members of {} (packing seeds {}..{}{}), mean +- standard deviation"
                                    " over the {} members that finished:\n",
                                    members.size(), o.file, o.firstSeed,
                                    o.firstSeed + static_cast<std::uint64_t>(o.runs) - 1,
@@ -365,15 +365,15 @@ void ensemble(const EnsembleOptions& o) {
   std::string json = fmt::format("{{\n  \"members\": {},\n  \"failed\": {},\n  \"ranks\": {},\n", members.size(), failed,
                                  ranks.size());
   for (std::size_t s = 0; s < stats.size(); ++s) {
-    table_ += fmt::format("  {:<28} {:.4g} +- {:.2g}\n", stats[s].name, stats[s].mean(), stats[s].std());
+    summary += fmt::format("  {:<28} {:.4g} +- {:.2g}\n", stats[s].name, stats[s].mean(), stats[s].std());
     json += fmt::format("  \"{}\": {{\"mean\": {}, \"std\": {}}}{}\n", stats[s].name, stats[s].mean(), stats[s].std(),
                         s + 1 < stats.size() ? "," : "");
   }
   json += "}\n";
   core::writeFileAtomically(folder / "ensemble.csv", [&](std::ostream& out) { out << rows; });
-  core::writeFileAtomically(folder / "ensemble.txt", [&](std::ostream& out) { out << table_; });
+  core::writeFileAtomically(folder / "ensemble.txt", [&](std::ostream& out) { out << summary; });
   core::writeFileAtomically(folder / "ensemble.json", [&](std::ostream& out) { out << json; });
-  std::cout << table_ << fmt::format("tables: {}/ensemble.csv, ensemble.json; packings in member-*/{}\n", folder.string(),
+  std::cout << summary << fmt::format("tables: {}/ensemble.csv, ensemble.json; packings in member-*/{}\n", folder.string(),
                                      storms ? ", their storm runs in member-*/storm-*/" : "");
   if (o.plots) {
     const fs::path script = fs::path(ARMOUR_UTILITIES_DIR) / "plot_ensemble.py";
