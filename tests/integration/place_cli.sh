@@ -49,7 +49,7 @@ PY
 /usr/bin/python3 - "$out/ensemble" <<'PY' || fail "the ensemble tables are wrong"
 import csv, json, sys
 rows = list(csv.DictReader(open(sys.argv[1] + "/ensemble.csv")))
-assert [r["seed"] for r in rows] == ["1", "2"], rows
+assert [r["packing_seed"] for r in rows] == ["1", "2"] and all(r["status"] == "done" for r in rows), rows
 e = json.load(open(sys.argv[1] + "/ensemble.json"))
 assert e["delta_rms_m"]["mean"] > 0.0 and e["delta_rms_m"]["std"] >= 0.0, e
 PY
