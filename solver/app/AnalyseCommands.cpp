@@ -17,9 +17,6 @@
 #include <memory>
 #include <sstream>
 
-#ifndef ARMOUR_UTILITIES_DIR
-#define ARMOUR_UTILITIES_DIR ""
-#endif
 
 namespace armour::app {
 namespace {
@@ -38,14 +35,7 @@ struct AnalyseOptions {
 
 /// Draw the PNGs with utilities/plot_pack.py (matplotlib); a missing Python is a warning, not an error.
 void plot(const fs::path& csv, const fs::path& folder) {
-  const fs::path script = fs::path(ARMOUR_UTILITIES_DIR) / "plot_pack.py";
-  if (!fs::exists(script)) {
-    std::cout << fmt::format("plots skipped: {} not found\n", script.string());
-    return;
-  }
-  const std::string command = fmt::format("python3 '{}' '{}' '{}'", script.string(), csv.string(), folder.string());
-  if (std::system(command.c_str()) != 0)
-    std::cout << fmt::format("plots failed (python3 with numpy and matplotlib needed): {}\n", command);
+  runUtility("plot_pack.py", {csv.string(), folder.string()}, "plots");
 }
 
 void analyse(const AnalyseOptions& o) {

@@ -4,6 +4,16 @@
 #include "core/BuildInfo.hpp"
 #include "core/Log.hpp"
 
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#ifndef ARMOUR_UTILITIES_DIR
+#define ARMOUR_UTILITIES_DIR ""
+#endif
+
 namespace armour::app {
 
 void startRun(const GlobalOptions& options, const std::string& commandLine) {
@@ -14,6 +24,21 @@ void startRun(const GlobalOptions& options, const std::string& commandLine) {
   auto log = core::logger("armour");
   log->info("{}", core::buildInfo());
   log->info("command: {}", commandLine);
+}
+
+bool runUtility(const std::string& script, const std::vector<std::string>& args, const std::string& what) {
+  const std::filesystem::path path = std::filesystem::path(ARMOUR_UTILITIES_DIR) / script;
+  if (!std::filesystem::exists(path)) {
+    std::cout << fmt::format("{} skipped: {} not found\n", what, path.string());
+    return false;
+  }
+  std::string command = fmt::format("/usr/bin/python3 '{}'", path.string());
+  for (const std::string& a : args) command += fmt::format(" '{}'", a);
+  if (std::system(command.c_str()) != 0) {
+    std::cout << fmt::format("{} failed (python3 with numpy and matplotlib needed): {}\n", what, command);
+    return false;
+  }
+  return true;
 }
 
 } // namespace armour::app

@@ -5,6 +5,7 @@
 /// banner with the build information, written to the run log before any work.
 
 #include <string>
+#include <vector>
 
 namespace armour::app {
 
@@ -15,5 +16,10 @@ struct GlobalOptions {
 
 /// Apply the global options and log the build line and the command line.
 void startRun(const GlobalOptions& options, const std::string& commandLine);
+
+/// Run utilities/<script> (Python 3 with numpy and matplotlib, from the source tree) with `args`.
+/// Plots are extras: a missing script or a failed run prints a notice naming `what` was skipped and
+/// the command, not an error. Returns true when the script ran and succeeded.
+bool runUtility(const std::string& script, const std::vector<std::string>& args, const std::string& what);
 
 } // namespace armour::app

@@ -32,9 +32,6 @@
 #include <sstream>
 #include <thread>
 
-#ifndef ARMOUR_UTILITIES_DIR
-#define ARMOUR_UTILITIES_DIR ""
-#endif
 
 namespace armour::app {
 namespace {
@@ -375,12 +372,7 @@ void ensemble(const EnsembleOptions& o) {
   core::writeFileAtomically(folder / "ensemble.json", [&](std::ostream& out) { out << json; });
   std::cout << summary << fmt::format("tables: {}/ensemble.csv, ensemble.json; packings in member-*/{}\n", folder.string(),
                                      storms ? ", their storm runs in member-*/storm-*/" : "");
-  if (o.plots) {
-    const fs::path script = fs::path(ARMOUR_UTILITIES_DIR) / "plot_ensemble.py";
-    const std::string command = fmt::format("python3 '{}' '{}'", script.string(), (folder / "ensemble.csv").string());
-    if (!fs::exists(script) || std::system(command.c_str()) != 0)
-      std::cout << fmt::format("plots failed (python3 with numpy and matplotlib needed): {}\n", command);
-  }
+  if (o.plots) runUtility("plot_ensemble.py", {(folder / "ensemble.csv").string()}, "plots");
   if (failed > 0) {
     std::cerr << fmt::format("error: {} of {} members failed; their error.txt says why\n", failed, members.size());
     throw CLI::RuntimeError(3);

@@ -30,9 +30,6 @@
 #include <string>
 #include <vector>
 
-#ifndef ARMOUR_UTILITIES_DIR
-#define ARMOUR_UTILITIES_DIR ""
-#endif
 
 namespace armour::app {
 namespace {
@@ -144,15 +141,7 @@ struct UnitInfo {
 };
 
 void runPython(const fs::path& folder, const fs::path& runDir) {
-  const fs::path script = fs::path(ARMOUR_UTILITIES_DIR) / "report.py";
-  if (!fs::exists(script)) {
-    std::cout << fmt::format("plots and index.html skipped: {} not found\n", script.string());
-    return;
-  }
-  const std::string command =
-      fmt::format("/usr/bin/python3 '{}' '{}' --run '{}'", script.string(), folder.string(), runDir.string());
-  if (std::system(command.c_str()) != 0)
-    std::cout << fmt::format("plots failed (python3 with numpy and matplotlib needed): {}\n", command);
+  runUtility("report.py", {folder.string(), "--run", runDir.string()}, "plots and index.html");
 }
 
 /// The storm input of a run: wave statistics of eta at the gauge, the provenance's Hs and Tp, and
