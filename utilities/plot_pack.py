@@ -17,7 +17,7 @@ comments) and writes PNGs into OUTDIR, named NAME_<plot>.png (NAME defaults to t
 
 A plot is written when its columns are present. Columns (header names; units in brackets):
 
-  unit                  unit index (-)                                          required
+  unit                  unit name or index (a label)                            required
   x, y, z               centroid in the world frame (m): x onshore, y along the trunk, z up;
                         with displacement columns, the final state's
   s, t                  centroid in the slope frame (m): up-slope and along the trunk (= y);
@@ -71,7 +71,7 @@ def read_units(path):
             try:
                 values.append(float(cell) if cell != "" else math.nan)
             except ValueError:
-                if key in ("name", "shape"):
+                if key in ("name", "shape", "unit"):  # labels (armour analyse names units)
                     values = None
                     break
                 sys.exit(f"{path}: row {i + 2}, column '{key}': '{cell}' is not a number")
