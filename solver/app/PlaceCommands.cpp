@@ -2,18 +2,22 @@
 #include "app/PlaceCommands.hpp"
 
 #include "app/RunCommands.hpp"
+#include "app/StopSignals.hpp"
 #include "io/SceneOverrides.hpp"
 
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "placement/PlacedScene.hpp"
 #include "placement/Placer.hpp"
+#include "simulation/CheckpointFile.hpp"
 #include "simulation/World.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -30,7 +34,17 @@ struct PlaceOptions {
   int threads = 0;    ///< OpenMP threads, 0 = OpenMP's default
   std::string output; ///< overrides the placed scene's path when not empty
   std::vector<std::string> sets; ///< --set changes of the placement file
+  bool restart = false;          ///< continue from the output folder's place-checkpoint.nc
+  double checkpointMinutes = 10.0; ///< wall time between checkpoints (unit: min); 0 = only when stopped
 };
+
+/// The command that continues a stopped placement.
+std::string restartCommand(const PlaceOptions& o) {
+  std::string again = fmt::format("armour place {} --restart", o.file);
+  if (!o.output.empty()) again += " --output " + o.output;
+  for (const std::string& set : o.sets) again += " --set " + set;
+  return again;
+}
 
 void placeScene(const PlaceOptions& o) {
   if (o.threads < 0) core::failInput("--threads", "{}: give a positive number of threads, or 0 for OpenMP's default", o.threads);
@@ -58,15 +72,64 @@ void placeScene(const PlaceOptions& o) {
     last = now;
     std::cout << fmt::format("  {}/{} units, t = {:.2f} s\n", placed, total, time) << std::flush;
   };
+  // Checkpoints: the World's state plus the placement's own progress, for the scene as resolved
+  // (its identity) and the placement file's text as run (with the --set changes).
+  const std::string effectiveText = io::applyOverridesToText(text.str(), o.sets, o.file);
+  const std::string identity = simulation::sceneIdentity(scene) + "# placement file as run\n" + effectiveText;
+  const std::string fingerprint = simulation::fingerprintOf(identity);
+  const fs::path checkpointPath = scene.output.folder / "place-checkpoint.nc";
+  std::optional<placement::PlacementProgress> resume;
+  if (o.restart) {
+    simulation::Checkpoint c = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
+    if (c.applicationState.empty())
+      core::failInput(checkpointPath.string(), "is the checkpoint of a run, not of `armour place` (no application_state); "
+                                               "start the placement anew without --restart");
+    resume = placement::decodeProgress(c.applicationState, checkpointPath.string());
+    resume->world = std::move(c.state);
+    std::cout << fmt::format("continuing the placement from {} ({} units placed{})\n", checkpointPath.string(),
+                             resume->unitsDone, resume->finalSettle ? ", in the final settle" : "");
+  }
+  if (!(o.checkpointMinutes >= 0.0) || !std::isfinite(o.checkpointMinutes))
+    core::failInput("--checkpoint-minutes", "{}: give the wall time between checkpoints in minutes (>= 0; 0 = only "
+                                            "when stopped by SIGINT or SIGTERM)", o.checkpointMinutes);
+  std::error_code ec;
+  fs::create_directories(scene.output.folder, ec);
+  if (ec) core::failInput(scene.output.folder.string(), "cannot create the output folder ({}); set output.folder in {} "
+                                                        "or --set output.folder=... to a writable place",
+                          ec.message(), o.file);
+  const StopSignals signals;
+  auto lastCheckpoint = std::chrono::steady_clock::now();
+  placement::PlaceOptions options;
+  if (resume) options.resume = &*resume;
+  options.safePoint = [&](const std::function<placement::PlacementProgress()>& capture) {
+    const bool stop = signals.received() != 0;
+    const auto now = std::chrono::steady_clock::now();
+    const bool due = o.checkpointMinutes > 0.0 &&
+                     std::chrono::duration<double>(now - lastCheckpoint).count() >= 60.0 * o.checkpointMinutes;
+    if (!stop && !due) return false;
+    placement::PlacementProgress p = capture();
+    simulation::Checkpoint c;
+    c.sceneFingerprint = fingerprint;
+    c.sceneIdentity = identity;
+    c.applicationState = placement::encodeProgress(p);
+    c.state = std::move(p.world);
+    simulation::writeCheckpoint(checkpointPath, c);
+    lastCheckpoint = std::chrono::steady_clock::now();
+    return stop;
+  };
   placement::PlacementResult result;
   try {
-    result = placement::place(scene, progress);
+    result = placement::place(scene, progress, options);
+  } catch (const placement::PlacementStopped& e) {
+    std::cerr << fmt::format("{}: {} by {}; checkpoint written to {}\ncontinue with: {}\n", o.file, e.what(),
+                             signalName(signals.received()), checkpointPath.string(), restartCommand(o));
+    throw CLI::RuntimeError(kExitStopped);
   } catch (const simulation::SimulationError& e) {
     std::cerr << "error: the placement stopped: " << e.what() << "\n";
     std::exit(3);
   }
-  placement::writePlacementOutputs(io::applyOverridesToText(text.str(), o.sets, o.file), result, scenePath,
-                                   scene.output.folder);
+  placement::writePlacementOutputs(effectiveText, result, scenePath, scene.output.folder);
+  fs::remove(checkpointPath, ec); // the placed scene is the result now
   std::cout << placement::summaryText(result);
   std::cout << fmt::format("placed scene: {}\ntables: {}/units.csv, placement.json, placement.txt\n",
                            scenePath.string(), scene.output.folder.string());
@@ -82,6 +145,11 @@ void addPlaceCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   place->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP's default)");
   place->add_option("--output", o->output, "the placed scene's path (default: placement.output beside the file)");
   addSetOption(*place, o->sets);
+  place->add_flag("--restart", o->restart, "continue a stopped placement from the output folder's place-checkpoint.nc "
+                                           "(same file and --set changes)");
+  place->add_option("--checkpoint-minutes", o->checkpointMinutes,
+                    "wall time between checkpoints (min; 0 = only when stopped by SIGINT/SIGTERM)")
+      ->capture_default_str();
   place->callback([o] { placeScene(*o); });
 }
 

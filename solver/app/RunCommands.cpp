@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/RunCommands.hpp"
 
+#include "app/StopSignals.hpp"
+
 #include "core/AtomicFile.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
@@ -35,48 +37,6 @@ using Clock = std::chrono::steady_clock;
 /// enough that a long run's log stays readable.
 constexpr double kProgressSeconds = 5.0;
 
-/// Exit code of a run stopped by SIGINT or SIGTERM (the shell's 128 + SIGINT).
-constexpr int kExitStopped = 130;
-
-// ---------------------------------------------------------------------------------------------
-// Stopping on a signal
-// ---------------------------------------------------------------------------------------------
-
-/// Set by the handler; read by the run loop after each step.
-volatile std::sig_atomic_t stopSignal = 0;
-
-extern "C" void onStopSignal(int signal) { stopSignal = signal; }
-
-/// SIGINT and SIGTERM ask the run to stop: it finishes the step, writes a checkpoint and exits
-/// with kExitStopped. The handler is one-shot (SA_RESETHAND): a second signal stops the program
-/// at once, leaving the last checkpoint (written atomically) in place. The previous handlers
-/// are restored when the run ends.
-class StopSignals {
-public:
-  StopSignals() {
-    stopSignal = 0;
-    struct sigaction action {};
-    action.sa_handler = onStopSignal;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    sigaction(SIGINT, &action, &previousInt_);
-    sigaction(SIGTERM, &action, &previousTerm_);
-  }
-  ~StopSignals() {
-    sigaction(SIGINT, &previousInt_, nullptr);
-    sigaction(SIGTERM, &previousTerm_, nullptr);
-  }
-  StopSignals(const StopSignals&) = delete;
-  StopSignals& operator=(const StopSignals&) = delete;
-
-  [[nodiscard]] int received() const { return stopSignal; }
-
-private:
-  struct sigaction previousInt_ {};
-  struct sigaction previousTerm_ {};
-};
-
-const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
 // ---------------------------------------------------------------------------------------------
 // Checkpoints

@@ -86,9 +86,13 @@ struct RockSettings {
 };
 
 /// The final settling: until every unit sleeps (the scene's sleep settings: at rest for the sleep
-/// time), or, with sleeping disabled, until the rms speed is below restSpeed.
+/// time) or no point of any unit has moved faster than restSpeed for the sleep time (a contact
+/// island of hundreds of units may never sleep: one chattering contact keeps it awake), or, with
+/// sleeping disabled, until the rms speed is below restSpeed.
 struct SettleSettings {
-  double restSpeed = 0.005;         ///< rms speed of a settled pack when sleeping is disabled (unit: m/s)
+  /// With sleeping: the speed no point of any unit (|v| + |omega| r) may exceed for the sleep time;
+  /// without: the pack's rms speed (unit: m/s).
+  double restSpeed = 0.005;
   double minTime = 0.5;             ///< at least this long after the last release (unit: s)
   double maxTime = 30.0;            ///< at most (unit: s); units still moving are reported
 };

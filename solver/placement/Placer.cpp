@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <random>
 
@@ -111,30 +112,73 @@ bool allAsleep(const World& world, std::size_t firstBody) {
   return true;
 }
 
+/// The largest speed of a point of any awake movable body from firstBody on: |v| + |omega| r, r the
+/// body's radius (unit: m/s).
+double largestSpeed(const World& world, std::size_t firstBody) {
+  const auto& bodies = world.bodies();
+  double top = 0.0;
+  for (BodyId b = firstBody; b < bodies.size(); ++b) {
+    if (!bodies.isAwake(b)) continue;
+    const double radius = world.shape(world.bodyShape(b)).radius * world.bodyScale(b);
+    top = std::max(top, bodies.velocity(b).norm() + bodies.worldAngularVelocity(b).norm() * radius);
+  }
+  return top;
+}
+
+/// How a settle ended.
+enum class SettleEnd {
+  Rest,     ///< rms speed below restSpeed (crane, or sleeping disabled)
+  Asleep,   ///< every body sleeps
+  Still,    ///< untilAsleep: no point of any body faster than restSpeed for the sleep time, though an island stays awake
+  TimeCap,  ///< maxTime reached
+};
+
+/// Where a settle stands: enough to continue it exactly after a checkpoint.
+struct SettleClock {
+  double start = 0.0;          ///< World time the settle began (unit: s)
+  std::uint64_t startStep = 0; ///< World step count then (unit: -)
+  double stillSince = -1.0;    ///< settle time since which no point moved faster than restSpeed; < 0: moving (unit: s)
+};
+
+/// Called at each check of a settle (every 10 ms of simulated time); true stops the placement.
+using SettleSafePoint = std::function<bool(const SettleClock&)>;
+
 /// Step until the bodies from firstBody on have an rms speed below restSpeed (after minTime),
-/// or, with `untilAsleep` and sleeping enabled, until they all sleep (at rest for the sleep time);
-/// at most maxTime. Returns the time taken and whether it came to rest.
-std::pair<double, bool> settle(World& world, std::size_t firstBody, double restSpeed, double minTime, double maxTime,
-                               bool untilAsleep = false) {
+/// or, with `untilAsleep` and sleeping enabled, until they all sleep (at rest for the sleep time)
+/// or no point of any of them has moved faster than restSpeed for the sleep time (a large contact
+/// island can stay awake for ever when one contact in it chatters just above the sleep speed);
+/// at most maxTime. `clock` is where it stands (a new settle: {now, step count, -1}). Returns the
+/// time taken and how it ended.
+std::pair<double, SettleEnd> settle(World& world, std::size_t firstBody, double restSpeed, double minTime,
+                                    double maxTime, bool untilAsleep, SettleClock clock,
+                                    const SettleSafePoint& safePoint = {}) {
   untilAsleep = untilAsleep && world.settings().sleep.enabled;
   auto log = core::logger("place");
   auto lastReport = std::chrono::steady_clock::now();
-  const double start = world.time();
   const double dt = world.timeStep();
-  const int checkEvery = std::max(1, static_cast<int>(std::lround(0.01 / dt))); // every 10 ms
-  for (int k = 1;; ++k) {
+  const std::uint64_t checkEvery = std::max(1L, std::lround(0.01 / dt)); // every 10 ms
+  for (;;) {
     world.step();
-    const double t = world.time() - start;
-    if (k % checkEvery != 0 && t < maxTime) continue;
+    const double t = world.time() - clock.start;
+    if ((world.stepCount() - clock.startStep) % checkEvery != 0 && t < maxTime) continue;
     const auto [ke, mass] = motion(world, firstBody);
     if (const auto now = std::chrono::steady_clock::now(); now - lastReport > std::chrono::seconds(10)) {
       lastReport = now;
-      log->info("  settling: t = {:.2f} s, rms speed {:.3g} m/s, {} awake", t, std::sqrt(2.0 * ke / std::max(mass, 1e-300)),
+      log->info("  settling: t = {:.2f} s, rms speed {:.3g} m/s, fastest point {:.3g} m/s, {} awake", t,
+                std::sqrt(2.0 * ke / std::max(mass, 1e-300)), largestSpeed(world, firstBody),
                 world.bodies().awakeBodies().size());
     }
-    if (t >= minTime && (untilAsleep ? allAsleep(world, firstBody) : ke <= 0.5 * mass * restSpeed * restSpeed))
-      return {t, true};
-    if (t >= maxTime) return {t, false};
+    if (untilAsleep) {
+      if (t >= minTime && allAsleep(world, firstBody)) return {t, SettleEnd::Asleep};
+      if (largestSpeed(world, firstBody) >= restSpeed) clock.stillSince = -1.0;
+      else if (clock.stillSince < 0.0) clock.stillSince = t;
+      if (t >= minTime && clock.stillSince >= 0.0 && t - clock.stillSince >= world.settings().sleep.time)
+        return {t, SettleEnd::Still};
+    } else if (t >= minTime && ke <= 0.5 * mass * restSpeed * restSpeed) {
+      return {t, SettleEnd::Rest};
+    }
+    if (t >= maxTime) return {t, SettleEnd::TimeCap};
+    if (safePoint && safePoint(clock)) throw PlacementStopped("stopped in the final settle");
   }
 }
 
@@ -246,6 +290,10 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   PlacementResult result;
   io::Scene& scene = result.scene;
   scene = input;
+  const PlacementProgress* resume = options.resume;
+  if (resume != nullptr && !options.dynamics)
+    core::failInput(input.sourceName, "a placement without dynamics has no checkpoints to continue from");
+  std::vector<AddedBody> added; // every body placed, for checkpoints
 
   const std::size_t unitShape = resolveShape(scene, ps.shape);
   const std::size_t unitMaterial = resolveMaterial(scene, ps.material, "placement.material");
@@ -328,7 +376,7 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     const int cols = std::max(1, static_cast<int>(std::round((y1 - y0) / spacing)));
     const int rowsR = std::max(1, (rs.count + cols - 1) / cols);
     const double dxr = (x1 - x0) / rowsR, dyr = (y1 - y0) / cols;
-    for (int i = 0; i < rs.count; ++i) {
+    for (int i = 0; i < (resume != nullptr ? 0 : rs.count); ++i) {
       std::mt19937_64 rng = stream(ps.seed ^ 0x726f636bULL, static_cast<std::uint64_t>(i));
       const int layerPass = i / (rowsR * cols);
       const int k = i % (rowsR * cols);
@@ -374,9 +422,25 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       spec.orientation = natural;
       const BodyId b = world.addBody(spec);
       rockBodies.push_back(b);
+      added.push_back({spec.name, sceneShape, scale, rockMaterial, rockDn * rockDn * rockDn, true});
       if (rockBodies.size() % 500 == 0) log->info("rock underlayer: {} of {} rocks", rockBodies.size(), rs.count);
       scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial,
                                        rockDn * rockDn * rockDn, true));
+    }
+    if (resume != nullptr) {
+      // The rocks of the checkpoint, as they were laid (their poses come with the World's state).
+      for (const AddedBody& r : resume->bodies) {
+        if (!r.fixed) continue;
+        BodySpec spec;
+        spec.name = r.name;
+        spec.shape = worldShape(r.sceneShape);
+        spec.scale = r.scale;
+        spec.material = static_cast<simulation::MaterialId>(r.material);
+        spec.fixed = true;
+        spec.position = resume->world.bodies.at(world.bodies().size()).position;
+        rockBodies.push_back(world.addBody(spec));
+        added.push_back(r);
+      }
     }
     result.summary.rocks = static_cast<int>(rockBodies.size());
     log->info("rock underlayer: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", rockBodies.size(),
@@ -408,13 +472,45 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     const Vec3 p = toUnitFrame * Vec3(g.plan.x(), g.plan.y(), g.startZ ? *g.startZ : faceZ);
     return {Vec3(p.x(), p.y(), 0.0), g.startZ ? p.z() : Deposit::kAbove};
   };
+  if (resume != nullptr) {
+    // The units of the checkpoint, then the World's state over all: poses, velocities, contacts'
+    // friction springs, rest timers, time and step count as they were.
+    for (const AddedBody& u : resume->bodies) {
+      if (u.fixed) continue;
+      BodySpec spec;
+      spec.name = u.name;
+      spec.shape = unitShapeId;
+      spec.scale = u.scale;
+      spec.material = static_cast<simulation::MaterialId>(u.material);
+      spec.position = resume->world.bodies.at(world.bodies().size()).position;
+      world.addBody(spec);
+      added.push_back(u);
+    }
+    if (world.bodies().size() != resume->world.bodies.size())
+      core::failInput(scene.sourceName, "the checkpoint holds {} bodies but its placement record names {}: start the "
+                                        "placement anew without --restart", resume->world.bodies.size(),
+                      world.bodies().size());
+    for (BodyId b = 0; b < world.bodies().size(); ++b)
+      if (resume->world.bodies[b].motion == dynamics::MotionType::Static)
+        world.bodies().setMotionType(b, dynamics::MotionType::Static);
+    world.restoreState(resume->world);
+    for (BodyId b : rockBodies) {
+      const AddedBody& r = added[b - givenBodies];
+      scene.bodies.push_back(sceneBody(world, b, r.name, r.sceneShape, r.material, r.volume, true));
+    }
+    result.summary.rocks = resume->summary.rocks;
+    log->info("continuing from the checkpoint: {} rocks and {} units placed, t = {:.3f} s{}", rockBodies.size(),
+              resume->unitsDone, world.time(), resume->finalSettle ? ", in the final settle" : "");
+  }
   Deposit deposit = rebuildDeposit();
   const int total = static_cast<int>(grid.size());
   // settle_each: every movable body but the one settling is held fixed (Static) until the final
   // release; the scene's own movable bodies too, so one body is awake at a time.
   const bool settleEach = ps.settleEach.enabled && options.dynamics;
   std::vector<BodyId> frozen;
-  if (settleEach) {
+  if (resume != nullptr) {
+    frozen.assign(resume->frozen.begin(), resume->frozen.end());
+  } else if (settleEach) {
     for (BodyId b = 0; b < firstUnitBody; ++b) {
       if (world.bodies().motionType(b) == dynamics::MotionType::Static) continue;
       world.bodies().setMotionType(b, dynamics::MotionType::Static);
@@ -422,8 +518,33 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     }
   }
   std::vector<double> settleDrifts;
+  if (resume != nullptr) {
+    settleDrifts = resume->settleDrifts;
+    result.units = resume->units;
+    result.summary.cappedUnits = resume->summary.cappedUnits;
+    result.summary.settleCappedUnits = resume->summary.settleCappedUnits;
+    result.summary.drifted = resume->summary.drifted;
+  }
+  // The progress at a safe point (PlacementProgress): the bodies, records and counts so far and
+  // the World's state; the caller fills in the stage.
+  const auto progressNow = [&]() {
+    PlacementProgress p;
+    p.unitsDone = static_cast<int>(result.units.size());
+    p.bodies = added;
+    p.units = result.units;
+    p.frozen.assign(frozen.begin(), frozen.end());
+    p.settleDrifts = settleDrifts;
+    p.summary.rocks = static_cast<int>(rockBodies.size());
+    p.summary.cappedUnits = result.summary.cappedUnits;
+    p.summary.settleCappedUnits = result.summary.settleCappedUnits;
+    p.summary.drifted = result.summary.drifted;
+    p.wallSeconds = (resume != nullptr ? resume->wallSeconds : 0.0) +
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    p.world = world.captureState();
+    return p;
+  };
   const double step = 0.05 * dn;
-  for (int i = 0; i < total; ++i) {
+  for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) {
     const GridPoint& g = grid[static_cast<std::size_t>(i)];
     std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
     Placed best;
@@ -495,28 +616,41 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     } else if (ps.method == Method::Crane && options.dynamics) {
       spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed); // along the lowering direction
       rec.body = world.addBody(spec);
-      const auto [t, rest] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime);
+      const auto [t, end] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime,
+                                   false, {world.time(), world.stepCount(), -1.0});
       rec.restTime = t;
-      rec.capped = !rest;
-      if (!rest) ++result.summary.cappedUnits;
+      rec.capped = end == SettleEnd::TimeCap;
+      if (rec.capped) ++result.summary.cappedUnits;
       deposit = rebuildDeposit(); // the pack as it now lies
     } else {
       rec.body = world.addBody(spec);
       deposit.add(best);
     }
     result.units.push_back(rec);
+    added.push_back({name, unitShape, unitScale, unitMaterial, ps.volume, false});
     if (progress) progress(i + 1, total, world.time());
+    // Safe points where the World alone says where the placement stands (method grid without
+    // settle_each keeps its geometric deposit, which is not in a checkpoint: it has none until
+    // the final settle, and its units cost no simulation).
+    if (options.dynamics && (settleEach || ps.method == Method::Crane) && options.safePoint &&
+        options.safePoint(progressNow))
+      throw PlacementStopped(fmt::format("stopped after {} of {} units", i + 1, total));
   }
 
-  // 3. Settle: until every unit sleeps, then wake them all and again, until a round moves no unit
-  // by more than kCreep: a unit that fell asleep while creeping down the face moves on when woken,
-  // as it would when the placed scene is run.
+  // 3. Settle: until every unit sleeps (or no point of any unit moves faster than the rest speed
+  // for the sleep time), then wake them all and again, until a round moves no unit by more than
+  // kCreep: a unit that fell asleep while creeping down the face moves on when woken, as it would
+  // when the placed scene is run.
   constexpr double kCreep = 1.0e-4; // m: a tenth of the 1 mm a pack at rest may drift in 60 s
-  if (settleEach) {
+  const bool resumeSettle = resume != nullptr && resume->finalSettle;
+  if (settleEach && !resumeSettle) {
     // The final release: every unit (and movable scene body) from where its own settle left it.
     for (BodyId b : frozen) world.bodies().setMotionType(b, dynamics::MotionType::Dynamic);
     world.motionTypesChanged();
+    frozen.clear();
     for (UnitRecord& u : result.units) u.releaseTime = world.time();
+  }
+  if (settleEach) {
     if (!settleDrifts.empty()) {
       result.summary.medianSettleDriftDn = median(settleDrifts);
     }
@@ -524,20 +658,46 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
               "{:.3f} Dn", result.summary.settleCappedUnits, result.summary.drifted.size(), ps.settleEach.maxDrift,
               result.summary.medianSettleDriftDn);
   }
-  const double settleStart = world.time();
+  const double settleStart = resumeSettle ? resume->settleStart : world.time();
   bool rest = false;
-  for (int round = 0; options.dynamics && world.time() - settleStart < ps.settle.maxTime; ++round) {
+  for (int round = resumeSettle ? resume->round : 0;
+       options.dynamics && world.time() - settleStart < ps.settle.maxTime; ++round) {
     std::vector<Vec3> before;
-    for (const UnitRecord& u : result.units) before.push_back(world.bodies().position(u.body));
-    if (round > 0) world.wakeAll();
-    const double left = ps.settle.maxTime - (world.time() - settleStart);
-    const auto [t, asleep] = settle(world, firstUnitBody, ps.settle.restSpeed, round == 0 ? ps.settle.minTime : 0.0,
-                                    left, true);
+    SettleClock clock{world.time(), world.stepCount(), -1.0};
+    if (resumeSettle && round == resume->round) {
+      before = resume->roundBefore;
+      clock = {resume->roundStart, resume->roundStartStep, resume->stillSince};
+    } else {
+      for (const UnitRecord& u : result.units) before.push_back(world.bodies().position(u.body));
+      if (round > 0) world.wakeAll();
+    }
+    const double left = ps.settle.maxTime - (clock.start - settleStart);
+    const SettleSafePoint safePoint = [&](const SettleClock& c) {
+      if (!options.safePoint) return false;
+      return options.safePoint([&]() {
+        PlacementProgress p = progressNow();
+        p.finalSettle = true;
+        p.round = round;
+        p.settleStart = settleStart;
+        p.roundStart = c.start;
+        p.roundStartStep = c.startStep;
+        p.stillSince = c.stillSince;
+        p.roundBefore = before;
+        return p;
+      });
+    };
+    const auto [t, end] = settle(world, firstUnitBody, ps.settle.restSpeed, round == 0 ? ps.settle.minTime : 0.0,
+                                 left, true, clock, safePoint);
     double creep = 0.0;
     for (std::size_t k = 0; k < result.units.size(); ++k)
       creep = std::max(creep, (world.bodies().position(result.units[k].body) - before[k]).norm());
-    log->info("settling round {}: {:.2f} s, largest move {:.3g} m{}", round + 1, t, creep, asleep ? "" : " (time cap)");
-    if (!asleep) break;
+    log->info("settling round {}: {:.2f} s, largest move {:.3g} m, {}", round + 1, t, creep,
+              end == SettleEnd::Asleep ? "all asleep"
+              : end == SettleEnd::Still ? fmt::format("no point faster than {} m/s for {} s", ps.settle.restSpeed,
+                                                      world.settings().sleep.time)
+              : end == SettleEnd::Rest  ? "rms speed below the rest speed"
+                                        : "time cap");
+    if (end == SettleEnd::TimeCap) break;
     if (round > 0 && creep < kCreep) {
       rest = true;
       break;
@@ -612,7 +772,8 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
         sm.porosity = 1.0 - sm.windowUnits * ps.volume / (sm.windowArea * sm.layerThickness);
     }
   }
-  sm.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+  sm.wallSeconds = (resume != nullptr ? resume->wallSeconds : 0.0) +
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
   return result;
 }
 

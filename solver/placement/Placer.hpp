@@ -22,59 +22,17 @@
 ///     off their place) are made.
 
 #include "io/Scene.hpp"
+#include "placement/PlacementProgress.hpp"
 #include "simulation/SceneBuilder.hpp"
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace armour::placement {
 
 using Vec3 = Eigen::Vector3d;
-
-/// What happened to one unit.
-struct UnitRecord {
-  std::string name;
-  /// Where it was released: its first touch (its grid point lowered to first contact), or with
-  /// settle_each where its own settle left it (unit: m).
-  Vec3 gridPoint = Vec3::Zero();
-  Eigen::Quaterniond releaseOrientation = Eigen::Quaterniond::Identity(); ///< natural frame -> world at release
-  Vec3 touchPoint = Vec3::Zero();  ///< centroid at first touch, after nesting (unit: m)
-  double settleDrift = 0.0;        ///< settle_each: distance its own settle took it from its first touch (unit: Dn)
-  double releaseTime = 0.0;        ///< simulated time of release (unit: s)
-  /// crane: simulated time until the pack was at rest; settle_each: of the unit's own settle (unit: s)
-  double restTime = 0.0;
-  /// crane: the next unit went before the pack was at rest; settle_each: the unit was frozen at
-  /// max_time or held at max drift before it rested (unit: -)
-  bool capped = false;
-  std::size_t body = 0;            ///< World body index
-};
-
-/// The summary of a placement (docs/placement.md, "Summary").
-struct PlacementSummary {
-  int units = 0, rocks = 0;
-  double simulatedTime = 0.0;      ///< unit: s
-  double wallSeconds = 0.0;        ///< unit: s
-  double dn = 0.0;                 ///< units' nominal diameter (unit: m)
-  double gridPackingDensity = 0.0; ///< of the grid as designed, Dn^2 / (dx dy) (unit: -); 0 for grid files
-  /// Achieved packing density: units whose centroid lies in the window between the first and
-  /// the last row (up the slope, in the slope plane) and between the walls, N Dn^2 / A (unit: -).
-  double packingDensity = 0.0;
-  double windowArea = 0.0;         ///< A of that window, in the slope plane (unit: m^2)
-  int windowUnits = 0;             ///< N in the window (unit: -)
-  /// Mean slope-normal height of the units' tops above the underlayer surface (the rocks' mean top
-  /// in the window, or the slope plane without rocks), over the window (unit: m).
-  double layerThickness = 0.0;
-  double porosity = 0.0;           ///< 1 - N V / (A t) over the window (unit: -)
-  int cappedUnits = 0;             ///< crane: released before the pack was at rest (unit: -)
-  int settleCappedUnits = 0;       ///< settle_each: frozen at max_time (or held at max drift) before they rested (unit: -)
-  std::vector<std::string> drifted; ///< settle_each: units whose own settle took them more than max_drift from first touch
-  double medianSettleDriftDn = 0.0; ///< settle_each: median drift of the units' own settles (unit: Dn)
-  double medianDisplacementDn = 0.0; ///< median distance from release to the end (unit: Dn)
-  std::vector<std::string> moving; ///< units still moving faster than the rest speed at the end
-  std::vector<std::string> moved;  ///< units that ended more than 1 Dn from where they were released
-  double maxDisplacementDn = 0.0;  ///< largest distance from release to the end (unit: Dn)
-};
 
 struct PlacementResult {
   io::Scene scene;                 ///< the placed scene: the input's items plus the new shapes and bodies, no placement
@@ -88,11 +46,26 @@ struct PlacementResult {
 /// Progress for the log: (units placed, units in all, simulated time s).
 using ProgressFn = std::function<void(int placed, int total, double time)>;
 
+/// Called at each point a placement can be continued from (after each unit is placed, and every
+/// 10 ms of simulated time in the final settle) with `capture`, which makes the progress (a copy
+/// of the World's state: call it only to write a checkpoint). Return true to stop there: place()
+/// then throws PlacementStopped.
+using SafePointFn = std::function<bool(const std::function<PlacementProgress()>& capture)>;
+
+/// Thrown by place() when the safe-point callback asked it to stop.
+struct PlacementStopped : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// How much of the placement to do.
 struct PlaceOptions {
   /// false: lower every unit geometrically (each onto those before it, as method grid does) and
   /// add it at rest, without stepping the World: the pack as released, for checks and tests.
   bool dynamics = true;
+  SafePointFn safePoint;                 ///< empty: no safe points
+  /// Continue from this progress, captured at a safe point of a placement of the same scene: the
+  /// result is bit for bit that of the uninterrupted placement. nullptr: start anew.
+  const PlacementProgress* resume = nullptr;
 };
 
 /// Place the units of `scene.placement` on the scene. Throws core::InputError for settings that

@@ -446,6 +446,13 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
       identity = define("scene_identity", NC_CHAR, {idDim}, nullptr,
                         "the resolved scene that scene_fingerprint hashes (duration and output settings left out)");
     }
+    int application = -1;
+    if (!c.applicationState.empty()) {
+      int appDim = -1;
+      w.check(nc_def_dim(ncid, "application_state_length", c.applicationState.size(), &appDim), "define a dimension");
+      application = define("application_state", NC_CHAR, {appDim}, nullptr,
+                           "the command's own state around the World (armour place: placement progress)");
+    }
     w.check(nc_enddef(ncid), "finish the header");
 
     const auto put = [&](int var, const auto& values) {
@@ -530,6 +537,9 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
     if (identity >= 0) {
       put(identity, c.sceneIdentity);
     }
+    if (application >= 0) {
+      put(application, c.applicationState);
+    }
     const int status = nc_close(ncid);
     ncid = -1;
     w.check(status, "finish");
@@ -609,6 +619,13 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     std::vector<char> text;
     r.get("scene_identity", r.variable("scene_identity", NC_CHAR, {idDim}), length, text);
     c.sceneIdentity.assign(text.begin(), text.end());
+  }
+  if (nc_inq_varid(r.id(), "application_state", &unused) == NC_NOERR) {
+    int appDim = -1;
+    const std::size_t length = r.dimension("application_state_length", appDim);
+    std::vector<char> text;
+    r.get("application_state", r.variable("application_state", NC_CHAR, {appDim}), length, text);
+    c.applicationState.assign(text.begin(), text.end());
   }
   if (!expect.sceneFingerprint.empty() && expect.sceneFingerprint != c.sceneFingerprint) {
     std::string change = "(the checkpoint does not hold the scene text, so the change cannot be named)";

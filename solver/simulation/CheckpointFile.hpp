@@ -53,6 +53,10 @@ struct Checkpoint {
   /// Why the run stopped, for a checkpoint taken at a guard-rail stop (checkpoint_at_error.nc):
   /// its state is that of a failed step, for inspection, not for a restart. "" = a good state.
   std::string stopReason;
+  /// The state of the command around the World, for commands that are more than a run (`armour
+  /// place`: which units are placed, their records, where the final settle stands), stored as the
+  /// text variable application_state; "" = none. Its owner writes and parses it.
+  std::string applicationState;
   std::string build;                  ///< the armour build line: set by the writer, read back by the reader
   int formatVersion = kCheckpointFormatVersion; ///< read back by the reader
 };

@@ -7,6 +7,10 @@
 #  - `armour analyse` of the placed scene against itself finds no displacement, every unit
 #    touches something (contact number >= 1) and the P2 values lie in [-1/2, 1];
 #  - `armour ensemble --runs 2` places two members with different seeds and reports mean +- std;
+#  - stopped by SIGINT, `armour place` exits 130 with a checkpoint and the command that continues
+#    it; continued with --restart it writes the same placed scene, byte for byte, as the run that
+#    was not stopped, and removes its checkpoint; --restart with another --set or without a
+#    checkpoint is refused;
 #  - a scene without a placement block and a missing grid file are refused (exit 2) with
 #    messages that name the file and the fix.
 # Arguments: the armour binary, the cases/placement folder, a work folder.
@@ -53,6 +57,39 @@ assert [r["packing_seed"] for r in rows] == ["1", "2"] and all(r["status"] == "d
 e = json.load(open(sys.argv[1] + "/ensemble.json"))
 assert e["delta_rms_m"]["mean"] > 0.0 and e["delta_rms_m"]["std"] >= 0.0, e
 PY
+
+# Stopped and continued: a checkpoint at every safe point (--checkpoint-minutes 1e-9), SIGINT as
+# soon as the first one is there.
+[[ ! -e "$out/dolos-out/place-checkpoint.nc" ]] || fail "a finished placement left its checkpoint"
+mkdir -p "$out/stop" && cp "$out/dolos.yaml" "$out/stop/dolos.yaml"
+"$armour" --log-level warn place "$out/stop/dolos.yaml" --threads 1 --checkpoint-minutes 1e-9 \
+  > "$out/stop/place.txt" 2> "$out/stop/stderr.txt" &
+pid=$!
+for _ in $(seq 1 600); do [[ -e "$out/stop/dolos-out/place-checkpoint.nc" ]] && break; sleep 0.05; done
+kill -INT "$pid"
+set +e
+wait "$pid"; code=$?
+set -e
+[[ $code -eq 130 ]] || fail "stopped by SIGINT: exit $code ($(cat "$out/stop/stderr.txt"))"
+grep -q "continue with: armour place $out/stop/dolos.yaml --restart" "$out/stop/stderr.txt" ||
+  fail "no restart command: $(cat "$out/stop/stderr.txt")"
+set +e
+msg=$("$armour" place "$out/stop/dolos.yaml" --restart --set seed=9 2>&1); code=$?
+set -e
+[[ $code -eq 2 ]] || fail "restart with another --set: exit $code"
+grep -q "place-checkpoint.nc.*the scene changed since the run started" <<< "$msg" || fail "unclear message: $msg"
+"$armour" --log-level warn place "$out/stop/dolos.yaml" --threads 1 --restart > "$out/stop/restart.txt" ||
+  fail "restart failed: $(cat "$out/stop/restart.txt")"
+# (line 1 names the placement file, which is in another folder)
+cmp <(tail -n +2 "$out/dolos-placed.yaml") <(tail -n +2 "$out/stop/dolos-placed.yaml") ||
+  fail "the continued placement differs from the uninterrupted one"
+cmp "$out/dolos-out/units.csv" "$out/stop/dolos-out/units.csv" || fail "units.csv differs after the restart"
+[[ ! -e "$out/stop/dolos-out/place-checkpoint.nc" ]] || fail "the continued placement left its checkpoint"
+set +e
+msg=$("$armour" place "$out/stop/dolos.yaml" --restart 2>&1); code=$?
+set -e
+[[ $code -eq 2 ]] || fail "restart without a checkpoint: exit $code"
+grep -q "place-checkpoint.nc" <<< "$msg" || fail "unclear message: $msg"
 
 # Refusals.
 set +e

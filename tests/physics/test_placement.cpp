@@ -3,16 +3,21 @@
 // read or refused with the file and line; no unit starts overlapping anything (the pack as
 // released has no engaged contact point); a placement is reproducible from its seed and
 // independent of the thread count; a crane-placed pack at rest stays at rest (< 1 mm in 60 s)
-// when its placed scene is run; a rock underlayer lies on the slope face.
+// when its placed scene is run; a rock underlayer lies on the slope face; a placement stopped at
+// a checkpoint and continued ends bit-identical to one not stopped.
 
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "placement/PlacedScene.hpp"
 #include "placement/PlacementGrid.hpp"
 #include "placement/Placer.hpp"
+#include "placement/PlacementProgress.hpp"
+#include "simulation/CheckpointFile.hpp"
 #include "simulation/SceneBuilder.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <omp.h>
 
 #include <cmath>
@@ -414,4 +419,108 @@ TEST(Placement, SettleEachHoldsADenseGridAfterTheRelease) {
   EXPECT_LT(settled.summary.maxDisplacementDn, 0.01);
   EXPECT_TRUE(settled.summary.moving.empty());
   EXPECT_TRUE(settled.summary.drifted.empty());
+}
+
+namespace {
+
+/// Place `scene`, stop at safe point `stopAt` (counted from 1) through a checkpoint file, continue
+/// from that file, and require the continued placement to equal `reference` bit for bit: every
+/// body's position and orientation, and every unit's record. Returns whether the stop was in the
+/// final settle.
+bool stopAndContinue(const io::Scene& scene, const placement::PlacementResult& reference, int stopAt) {
+  const fs::path file = fs::temp_directory_path() / fmt::format("armour-place-checkpoint-{}.nc", ::getpid());
+  int calls = 0;
+  bool inSettle = false;
+  placement::PlaceOptions stopping;
+  stopping.safePoint = [&](const std::function<placement::PlacementProgress()>& capture) {
+    if (++calls < stopAt) return false;
+    placement::PlacementProgress p = capture();
+    inSettle = p.finalSettle;
+    simulation::Checkpoint c;
+    c.sceneFingerprint = "test";
+    c.applicationState = placement::encodeProgress(p);
+    c.state = std::move(p.world);
+    simulation::writeCheckpoint(file, c);
+    return true;
+  };
+  EXPECT_THROW((void)placement::place(scene, {}, stopping), placement::PlacementStopped);
+  const simulation::Checkpoint c = simulation::readCheckpoint(file, {"test", "", 0});
+  placement::PlacementProgress resume = placement::decodeProgress(c.applicationState, file.string());
+  resume.world = c.state;
+  fs::remove(file);
+  placement::PlaceOptions continuing;
+  continuing.resume = &resume;
+  const placement::PlacementResult r = placement::place(scene, {}, continuing);
+  EXPECT_EQ(r.scene.bodies.size(), reference.scene.bodies.size());
+  for (std::size_t i = 0; i < std::min(r.scene.bodies.size(), reference.scene.bodies.size()); ++i) {
+    EXPECT_EQ(r.scene.bodies[i].name, reference.scene.bodies[i].name);
+    EXPECT_EQ(r.scene.bodies[i].position, reference.scene.bodies[i].position) << r.scene.bodies[i].name;
+    EXPECT_EQ(r.scene.bodies[i].orientation.coeffs(), reference.scene.bodies[i].orientation.coeffs());
+  }
+  EXPECT_EQ(r.units.size(), reference.units.size());
+  for (std::size_t i = 0; i < std::min(r.units.size(), reference.units.size()); ++i) {
+    EXPECT_EQ(r.units[i].gridPoint, reference.units[i].gridPoint);
+    EXPECT_EQ(r.units[i].restTime, reference.units[i].restTime);
+    EXPECT_EQ(r.units[i].releaseTime, reference.units[i].releaseTime);
+  }
+  EXPECT_EQ(r.summary.simulatedTime, reference.summary.simulatedTime);
+  EXPECT_EQ(r.summary.rocks, reference.summary.rocks);
+  EXPECT_EQ(r.summary.settleCappedUnits, reference.summary.settleCappedUnits);
+  return inSettle;
+}
+
+} // namespace
+
+TEST(Placement, StoppedAndContinuedEndsBitIdentical) {
+  // A placement stopped at a safe point (as SIGINT does: checkpoint, stop) and continued from
+  // its checkpoint file ends exactly where the uninterrupted one does: the World's state and the
+  // placement's progress (records, stage, settle clock) restore everything it depends on.
+  // settle_each on rocks: stopped after the second unit (the rocks are added again from the
+  // record, not dropped anew) and in the final settle; crane: after the third unit.
+  const io::Scene settleEach = parse(antiferScene(
+      "grid", "  rocks: {count: 12, dn50: 0.4, grading: 1.3, shapes: 3, s_end: 3, toe_length: 1}\n  settle_each: {}\n"));
+  int safePoints = 0;
+  placement::PlaceOptions counting;
+  counting.safePoint = [&](const auto&) { return ++safePoints, false; };
+  const placement::PlacementResult reference = placement::place(settleEach, {}, counting);
+  ASSERT_GT(safePoints, 10) << "too short a final settle to stop in";
+  EXPECT_FALSE(stopAndContinue(settleEach, reference, 2));
+  EXPECT_TRUE(stopAndContinue(settleEach, reference, safePoints - 3));
+
+  const io::Scene crane = parse(antiferScene("crane"));
+  EXPECT_FALSE(stopAndContinue(crane, placement::place(crane), 3));
+}
+
+TEST(Placement, ProgressRecordsAreRefusedWhenDamaged) {
+  placement::PlacementProgress p;
+  p.unitsDone = 1;
+  placement::UnitRecord u;
+  u.name = "unit 0 with spaces";
+  u.gridPoint = {0.1, -2.0 / 3.0, 1e-300};
+  p.units.push_back(u);
+  p.bodies.push_back({"rock_0000", 2, 0.123456789, 0, 0.027, true});
+  p.stillSince = 0.1;
+  const std::string text = placement::encodeProgress(p);
+  const placement::PlacementProgress q = placement::decodeProgress(text, "c.nc");
+  EXPECT_EQ(q.units.at(0).name, u.name);
+  EXPECT_EQ(q.units.at(0).gridPoint, u.gridPoint); // hexadecimal floats: exact
+  EXPECT_EQ(q.bodies.at(0).scale, 0.123456789);
+  EXPECT_EQ(q.stillSince, 0.1);
+  const auto refused = [](const std::string& t, const std::string& words) {
+    try {
+      (void)placement::decodeProgress(t, "c.nc");
+      ADD_FAILURE() << "accepted: " << t;
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("c.nc"), std::string::npos) << e.what();
+    }
+  };
+  refused("something else\n", "does not start with");
+  refused(text.substr(0, text.size() - 4), "ends before its 'end' line");
+  std::string bad = text;
+  bad.replace(bad.find("units_done 1"), 12, "units_done 2");
+  refused(bad, "units_done 2 but 1 unit records");
+  bad = text;
+  bad.replace(bad.find("still_since "), 12, "still_since x");
+  refused(bad, "is not a number");
 }
