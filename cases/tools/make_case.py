@@ -705,7 +705,9 @@ coeffs          {{ n ({npd} 1 1); }}
         averages several unit faces (the castellated unit faces on mesh planes then lie exactly on
         voxel boundaries: foam-bridge's VoxelGrid puts a face there in the voxel above it, online
         and offline alike). The trunk section is the whole tank width (3D: the symmetry
-        sides bound it); 2D runs have one cell across, y in [0, width].
+        sides bound it); 2D runs have one cell across, y in [0, width], and their fields hold at
+        every y: their storm files say so (uniform_along_y, foam-proxy --uniform-along-y), so the
+        solver loads units anywhere along a placed trunk, whatever its width.
         """
         p, t, m = self.p, self.p["tank"], self.p["mesh"]
         core = p["structure"]["core"]
@@ -725,12 +727,16 @@ coeffs          {{ n ({npd} 1 1); }}
 
     @staticmethod
     def grid_args(g):
-        """foam-proxy options of the grid (the same for `dict` and `sample`)."""
+        """foam-proxy options of the grid (the same for `dict` and `sample`).
+
+        2D runs add --uniform-along-y: one cell across describes every y, so the storm file (and
+        armourSampler's) declares uniform_along_y = 1; a 3D run's section stays bounded.
+        """
         args = ["--x-min", repr(g["x_min"]), "--z-min", repr(g["z_min"]), "--dx", repr(g["dx"]),
                 "--dz", repr(g["dz"]), "--nx", str(g["nx"]), "--nz", str(g["nz"]),
                 "--trunk-origin", repr(g["trunk_origin"]), "--trunk-length", repr(g["trunk_length"]),
                 "--swl", repr(g["swl"]), "--rho", repr(g["rho"]), "--g", repr(g["g"])]
-        return args + (["--2d"] if g["two_d"] else [])
+        return args + (["--2d", "--uniform-along-y"] if g["two_d"] else [])
 
     def write_sampling_functions(self):
         """system/armourFunctions from `foam-proxy dict` (included by controlDict's functions)."""

@@ -237,6 +237,7 @@ storm::StormHeader VoxelStatistics::header(bool hasVelocityY) const {
   h.z = grid_.zCentres();
   h.trunkOrigin = settings_.grid.trunkOrigin;
   h.trunkLength = settings_.grid.trunkLength;
+  h.uniformAlongY = settings_.uniformAlongY;
   h.stillWaterLevel = settings_.stillWaterLevel;
   h.waterDensity = settings_.waterDensity;
   h.gravity = settings_.gravity;

@@ -58,6 +58,10 @@ struct SamplerSettings {
   double normalisationAmplitude = 0.0;
   double pressureReference = 0.0;       ///< subtracted from p to make it gauge (unit: Pa)
   int minimumSamples = 2;               ///< voxels with fewer sample points give no deviations (unit: -)
+  /// The run's fields hold at every y (a 2D tank, one cell across): the storm file says so
+  /// (uniform_along_y = 1) and the solver loads units at any y, not only on the trunk section
+  /// (unit: -). Leave false for a 3D tank, whose section is the trunk the values stand for.
+  bool uniformAlongY = false;
 };
 
 /// Values of one record at the local sample points, one array per component (length n).

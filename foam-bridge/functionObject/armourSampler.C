@@ -96,6 +96,8 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     s.grid.nz = grid.get<label>("nz");
     s.grid.trunkOrigin = dict.get<scalar>("trunkOrigin");
     s.grid.trunkLength = dict.get<scalar>("trunkLength");
+    // A 2D tank holds at every y: the storm file then says uniform_along_y = 1.
+    s.uniformAlongY = dict.lookupOrDefault<bool>("uniformAlongY", false);
     s.stillWaterLevel = dict.get<scalar>("stillWaterLevel");
     s.waterDensity = dict.get<scalar>("rho");
     scalar magG = 9.81;

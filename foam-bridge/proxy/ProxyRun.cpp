@@ -212,13 +212,15 @@ std::string functionDictionaries(const SampleOptions& o, const std::vector<std::
       "        twoD            {};\n        patches         ({});\n"
       "        grid            {{ xMin {}; zMin {}; dx {}; dz {}; nx {}; nz {}; }}\n"
       "        trunkOrigin     {};  // m\n        trunkLength     {};  // m\n"
+      "        uniformAlongY   {};  // the fields hold at every y (2D tank)\n"
       "        stillWaterLevel {};  // m\n        rho             {};  // kg/m^3\n"
       "        etaPlaneY       {};  // m\n        etaHalfWidth    {};  // m\n        etaColumnHalfWidth {};  // m\n"
       "        normalisationAmplitude {};  // m, 0 = from the eta range\n        pRef            {};  // Pa\n"
       "        file            \"postProcessing/armourSampler/storm.nc\";\n    }}\n\n",
       samplerLibrary, control, o.twoD ? "true" : "false", patchList, g.xMin, g.zMin, g.dx, g.dz, g.nx, g.nz,
-      g.trunkOrigin, g.trunkLength, o.sampler.stillWaterLevel, o.sampler.waterDensity, stats.etaPlaneY(),
-      stats.etaHalfWidth(), stats.etaColumnHalfWidth(), o.sampler.normalisationAmplitude, o.sampler.pressureReference);
+      g.trunkOrigin, g.trunkLength, o.sampler.uniformAlongY ? "true" : "false", o.sampler.stillWaterLevel,
+      o.sampler.waterDensity, stats.etaPlaneY(), stats.etaHalfWidth(), stats.etaColumnHalfWidth(),
+      o.sampler.normalisationAmplitude, o.sampler.pressureReference);
   if (!stock) return d;
   if (!o.twoD) {
     d += fmt::format(

@@ -75,6 +75,8 @@ int main(int argc, char** argv) {
     c->add_option("--nz", so.sampler.grid.nz, "voxel rows")->required();
     c->add_option("--trunk-origin", so.sampler.grid.trunkOrigin, "y where the averaged trunk section starts (m)")->required();
     c->add_option("--trunk-length", so.sampler.grid.trunkLength, "length of the trunk section (m)")->required();
+    c->add_flag("--uniform-along-y", so.sampler.uniformAlongY, "the fields hold at every y (a 2D tank): the storm "
+                "file says uniform_along_y = 1 and the solver loads units at any y, not only on the trunk section");
     c->add_option("--swl", so.sampler.stillWaterLevel, "z of the still water level (m)")->required();
     c->add_option("--rho", so.sampler.waterDensity, "water density (kg/m^3)")->capture_default_str();
     c->add_option("--g", so.sampler.gravity, "|g| (m/s^2)")->capture_default_str();

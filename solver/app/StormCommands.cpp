@@ -270,8 +270,9 @@ void printInfoJson(const StormReader& reader, const StormSummary& s) {
                      jsonNumber(t.back()), jsonNumber(s.dtMin), jsonNumber(s.dtMax));
   out += fmt::format("  \"still_water_level\": {}, \"water_density\": {}, \"gravity\": {},\n",
                      jsonNumber(h.stillWaterLevel), jsonNumber(h.waterDensity), jsonNumber(h.gravity));
-  out += fmt::format("  \"trunk_origin\": {}, \"trunk_length\": {}, \"velocity_y\": {},\n", jsonNumber(h.trunkOrigin),
-                     jsonNumber(h.trunkLength), h.hasVelocityY ? "true" : "false");
+  out += fmt::format("  \"trunk_origin\": {}, \"trunk_length\": {}, \"uniform_along_y\": {}, \"velocity_y\": {},\n",
+                     jsonNumber(h.trunkOrigin), jsonNumber(h.trunkLength), h.uniformAlongY ? "true" : "false",
+                     h.hasVelocityY ? "true" : "false");
   out += fmt::format("  \"eta\": [{}, {}],\n", jsonNumber(s.etaMin), jsonNumber(s.etaMax));
   if (!v.present) {
     out += "  \"variability\": null,\n";
@@ -319,8 +320,11 @@ void printInfo(const std::string& path, bool json) {
   line("still water", fmt::format("z = {:.6g} m", h.stillWaterLevel));
   line("eta", fmt::format("{:.6g} .. {:.6g} m above the still water level", s.etaMin, s.etaMax));
   line("water", fmt::format("density {:.6g} kg/m^3, gravity {:.6g} m/s^2", h.waterDensity, h.gravity));
-  line("trunk", fmt::format("y = {:.6g} .. {:.6g} m (length {:.6g} m)", h.trunkOrigin, h.trunkOrigin + h.trunkLength,
-                            h.trunkLength));
+  line("trunk", fmt::format("y = {:.6g} .. {:.6g} m (length {:.6g} m){}", h.trunkOrigin, h.trunkOrigin + h.trunkLength,
+                            h.trunkLength,
+                            h.uniformAlongY ? "; uniform along y: the fields hold at every y (a 2D tank), loads apply "
+                                              "to units at any y"
+                                            : "; loads apply only to units on it"));
   line("velocity y", h.hasVelocityY ? "yes" : "no (v = 0)");
   line("variability", describeVariability(h.variability));
   line("title", p.title);
@@ -358,6 +362,11 @@ void addStormCommands(CLI::App& app, const GlobalOptions& /*global*/) {
       ->capture_default_str()
       ->group("Grid");
   synth->add_option("--trunk-length", s.trunkLength, "trunk length along y (m)")->capture_default_str()->group("Grid");
+  synth
+      ->add_flag("--uniform-along-y", s.uniformAlongY,
+                 "the fields hold at every y (uniform_along_y = 1): the solver loads units at any y, not only on the "
+                 "trunk section")
+      ->group("Grid");
   synth->add_option("--swl", s.stillWaterLevel, "z of the still water level (m)")
       ->capture_default_str()
       ->group("Water");

@@ -96,6 +96,9 @@ void StormLoads::initialise(const simulation::World& world) {
   gridMax_[1] = h.z.back() + 0.5 * h.dz();
   trunkMin_ = h.trunkOrigin;
   trunkMax_ = h.trunkLength > 0.0 ? h.trunkOrigin + h.trunkLength : h.trunkOrigin;
+  // A file uniform along y (a 2D tank, analytic waves) holds at every y: its trunk range only says
+  // where the values were averaged, and units anywhere along the trunk take loads.
+  trunkBounded_ = !h.uniformAlongY && h.trunkLength > 0.0;
   // Bilinear alpha reaches zero one voxel above the last wet centre; a second voxel covers a
   // free surface that is steep or overturning within a column.
   airMargin_ = 2.0 * h.dz();
@@ -119,7 +122,7 @@ void StormLoads::initialise(const simulation::World& world) {
     if (x.x() < gridMin_[0] || x.x() > gridMax_[0] || x.z() < gridMin_[1] || x.z() > gridMax_[1]) {
       ++outsideGrid;
     }
-    if (h.trunkLength > 0.0 && (x.y() < trunkMin_ || x.y() > trunkMax_)) {
+    if (trunkBounded_ && (x.y() < trunkMin_ || x.y() > trunkMax_)) {
       ++outsideTrunk;
     }
   }
@@ -131,9 +134,15 @@ void StormLoads::initialise(const simulation::World& world) {
               "outside it they get no hydrodynamic load; check the scene's position against the storm file",
               outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1]);
   }
+  if (h.uniformAlongY) {
+    log->info("storm file '{}' holds at every y (uniform_along_y = 1): units at any y take loads (y {} .. {} m is "
+              "only the range it was averaged over)",
+              reader_->path(), h.trunkOrigin, h.trunkOrigin + h.trunkLength);
+  }
   if (outsideTrunk > 0) {
     log->warn("{} of {} loaded bodies have their centroid outside the trunk of '{}' (y {} .. {} m): elements "
-              "outside it get no hydrodynamic load",
+              "outside it get no hydrodynamic load (a file from a 2D tank should declare uniform_along_y = 1: "
+              "foam-proxy sample --uniform-along-y)",
               outsideTrunk, loadedCount, reader_->path(), trunkMin_, trunkMax_);
   }
   if (settings_.variability.enabled && !variability_.active()) {
@@ -287,7 +296,7 @@ std::string StormLoads::summary() const {
   const auto& c = counters_;
   if (c.bodyEvaluationsTotal == 0) return {};
   return fmt::format("hydro: {} load updates; {} of {} unit evaluations skipped ({:.1f} %: dry, above the water, or "
-                     "outside the storm grid, no surface element sampled)",
+                     "outside the storm grid or its trunk section, no surface element sampled)",
                      c.updates, c.skippedTotal, c.bodyEvaluationsTotal,
                      100.0 * static_cast<double>(c.skippedTotal) / static_cast<double>(c.bodyEvaluationsTotal));
 }
@@ -307,10 +316,10 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   const Vec3 x = bodies.position(b);
   const double r = s * shape.radius;
   const storm::StormHeader& h = reader_->header();
-  const bool trunkBounded = h.trunkLength > 0.0;
-  // Cheap rejections before any element is touched: the body's box against the grid and the trunk...
+  // Cheap rejections before any element is touched: the body's box against the grid and, for a
+  // file bounded along y, the trunk (such a unit counts as skipped: outside the storm's grid)...
   if (x.x() + r < gridMin_[0] || x.x() - r > gridMax_[0] || x.z() + r < gridMin_[1] || x.z() - r > gridMax_[1] ||
-      (trunkBounded && (x.y() + r < trunkMin_ || x.y() - r > trunkMax_))) {
+      (trunkBounded_ && (x.y() + r < trunkMin_ || x.y() - r > trunkMax_))) {
     skipped = 1;
     return;
   }
@@ -352,7 +361,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   std::uint32_t sampled = 0, wetElements = 0;
   for (std::size_t e = 0; e < el.size(); ++e) {
     const Vec3 c = x + scaledRotation * el.centroid[e];
-    if (trunkBounded && (c.y() < trunkMin_ || c.y() > trunkMax_)) {
+    if (trunkBounded_ && (c.y() < trunkMin_ || c.y() > trunkMax_)) {
       continue;
     }
     const storm::FlowSample f = sampler_->sample(c.x(), c.z());

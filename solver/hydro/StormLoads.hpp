@@ -10,7 +10,8 @@
 ///    M_p = sum_e (r_e - x_b) x (-p_e a_e n_e), with p_e sampled from the storm file (StormSampler)
 ///    at the element centroid's (x, z) and storm time t + timeOffset, plus the Weibull variability
 ///    (Variability.hpp); p_e = 0 (atmospheric) where the water fraction is below wetAlpha, the sample
-///    is outside the grid or has no data, or the element lies outside the trunk's y range;
+///    is outside the grid or has no data, or the element lies outside the trunk's y range (not for a
+///    file uniform along y, StormHeader::uniformAlongY: a 2D tank holds at every y);
 ///  - Morison drag (seed 000 eq. 2) at the centre of mass: F_D = 1/2 rho C_d A (u - v)|u - v|, u the
 ///    area-weighted mean flow velocity over the wet elements, v the body's current velocity, A the
 ///    silhouette area normal to u - v (ProjectedArea.hpp) times s^2 and the wet area fraction;
@@ -27,10 +28,10 @@
 ///
 /// Cost: fixed bodies and bodies the `bodies` filter excludes are never touched. At an update, a
 /// loaded body whose box (centroid +- scale x shape radius) lies outside the grid's x or z extent,
-/// outside the trunk's y range, or wholly above the highest free surface of the columns it spans
-/// (plus a margin of two voxel heights) is skipped before any element is sampled. The per-body work
-/// runs in parallel (OpenMP), each body writing only its own slot: the result does not depend on the
-/// thread count.
+/// outside the trunk's y range (bounded files only), or wholly above the highest free surface of
+/// the columns it spans (plus a margin of two voxel heights) is skipped before any element is
+/// sampled. The per-body work runs in parallel (OpenMP), each body writing only its own slot: the
+/// result does not depend on the thread count.
 
 #include "hydro/HydroSettings.hpp"
 #include "hydro/ProjectedArea.hpp"
@@ -145,6 +146,8 @@ private:
   double gridMin_[2] = {0.0, 0.0};       ///< x, z lower edges of the grid: outermost centres - half a voxel (m)
   double gridMax_[2] = {0.0, 0.0};       ///< upper edges (m)
   double trunkMin_ = 0.0, trunkMax_ = 0.0; ///< y range of the trunk; unbounded if trunkLength <= 0 (m)
+  /// Loads only within [trunkMin_, trunkMax_]; false for a file uniform along y (unit: -).
+  bool trunkBounded_ = true;
   double airMargin_ = 0.0;               ///< a body this far above the highest free surface is dry (m)
 
   // Per body.

@@ -76,6 +76,10 @@ struct StormHeader {
   std::vector<double> z;        ///< voxel centres in z, uniform spacing, increasing (unit: m)
   double trunkOrigin = 0.0;     ///< y of the start of the extrusion (unit: m)
   double trunkLength = 0.0;     ///< length of the extrusion along y (unit: m); 44.5 in seed 000
+  /// The fields hold at every y (a 2D tank, analytic waves): loads apply to units at any y;
+  /// trunkOrigin/trunkLength then only record the y range averaged (unit: -). Global attribute
+  /// uniform_along_y (0 or 1; absent = 0).
+  bool uniformAlongY = false;
   double stillWaterLevel = 0.0; ///< z of the still water surface (unit: m)
   double waterDensity = 1025.0; ///< rho (unit: kg/m^3)
   double gravity = 9.81;        ///< |g| (unit: m/s^2)

@@ -228,9 +228,41 @@ struct StormReader::Impl {
     return fill;
   }
 
+  /// The optional global attribute uniform_along_y: absent = false (files written before it existed).
+  bool readUniformAlongY() const;
   void open();
   void readVariability();
 };
+
+bool StormReader::Impl::readUniformAlongY() const {
+  constexpr const char* kName = "uniform_along_y";
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(ncid, NC_GLOBAL, kName, &type, &length) != NC_NOERR) {
+    return false; // bounded: loads only between trunk_origin and trunk_origin + trunk_length
+  }
+  const bool integer = type == NC_BYTE || type == NC_SHORT || type == NC_INT || type == NC_UBYTE ||
+                       type == NC_USHORT || type == NC_UINT || type == NC_INT64 || type == NC_UINT64;
+  if (!integer || length != 1) {
+    const std::string have = type == NC_CHAR || (type == NC_STRING && length == 1)
+                                 ? fmt::format("the text '{}'", text(NC_GLOBAL, "", kName))
+                                 : fmt::format("of netCDF type {} with {} value(s)", static_cast<int>(type), length);
+    core::failInput(path, "the global attribute {} is {}: it must be one integer, 0 (the fields hold only on the "
+                          "trunk section trunk_origin .. trunk_origin + trunk_length) or 1 (they hold at every y, "
+                          "e.g. a 2D tank); rewrite it, e.g. ncatted -a {},global,o,i,1 (a 2D tank) or ...,o,i,0 "
+                          "(a 3D section)",
+                    kName, have, kName);
+  }
+  long long value = 0;
+  checkRead(nc_get_att_longlong(ncid, NC_GLOBAL, kName, &value), std::string("reading attribute ") + kName);
+  if (value != 0 && value != 1) {
+    core::failInput(path, "the global attribute {} = {}: must be 0 (the fields hold only on the trunk section "
+                          "trunk_origin .. trunk_origin + trunk_length) or 1 (they hold at every y, e.g. a 2D tank); "
+                          "rewrite it, e.g. ncatted -a {},global,o,i,1 (a 2D tank) or ...,o,i,0 (a 3D section)",
+                    kName, value, kName);
+  }
+  return value == 1;
+}
 
 void StormReader::Impl::open() {
   std::error_code ec;
@@ -288,6 +320,7 @@ void StormReader::Impl::open() {
   h.gravity = globalNumber("gravity", "m s-2");
   h.trunkOrigin = globalNumber("trunk_origin", "m");
   h.trunkLength = globalNumber("trunk_length", "m");
+  h.uniformAlongY = readUniformAlongY();
 
   auto& prov = h.provenance;
   prov.title = text(NC_GLOBAL, "", "title");

@@ -387,6 +387,7 @@ void StormSynth::buildHeader(const std::string& command) {
   }
   h.trunkOrigin = s.trunkOrigin;
   h.trunkLength = s.trunkLength;
+  h.uniformAlongY = s.uniformAlongY;
   h.stillWaterLevel = s.stillWaterLevel;
   h.waterDensity = s.density;
   h.gravity = s.gravity;

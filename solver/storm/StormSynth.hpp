@@ -76,6 +76,9 @@ struct SynthSettings {
   // Trunk (the extrusion of the 2D slice along y).
   double trunkOrigin = 0.0;  ///< --trunk-origin: y of the start of the trunk (unit: m)
   double trunkLength = 20.0; ///< --trunk-length: trunk length along y (unit: m)
+  /// --uniform-along-y: the analytic fields hold at every y, so the solver loads units anywhere
+  /// along the trunk; off, only units within [trunkOrigin, trunkOrigin + trunkLength] (unit: -).
+  bool uniformAlongY = false;
 
   /// --variability etc.: written to the header as given (present = false: none). A zero
   /// normalisationElevation is replaced by the wave amplitude a_n = H/2 (Hs/2) and the pressure by

@@ -110,6 +110,9 @@ void StormWriter::Impl::define() {
   number(NC_GLOBAL, "gravity", h.gravity);
   number(NC_GLOBAL, "trunk_origin", h.trunkOrigin);
   number(NC_GLOBAL, "trunk_length", h.trunkLength);
+  // Always written (0 or 1), so the file says which kind it is; readers treat an absent one as 0.
+  const int uniform = h.uniformAlongY ? 1 : 0;
+  check(nc_put_att_int(ncid, NC_GLOBAL, "uniform_along_y", NC_INT, 1, &uniform), "write uniform_along_y");
   text(NC_GLOBAL, "source_case", h.provenance.sourceCase);
   text(NC_GLOBAL, "openfoam_version", h.provenance.openfoamVersion);
   text(NC_GLOBAL, "comment", h.provenance.comment);
@@ -158,6 +161,10 @@ void StormWriter::Impl::define() {
   text(yVar, "axis", "Y");
   text(yVar, "long_name", "middle of the trunk section the values are averaged over (along the trunk)");
   text(yVar, "bounds", "y_bnds");
+  if (h.uniformAlongY) {
+    text(yVar, "comment", "the fields hold at every y (global attribute uniform_along_y = 1); y_bnds is only the "
+                          "range the values were averaged over");
+  }
   const int xbDims[2] = {xDim, nvDim};
   const int zbDims[2] = {zDim, nvDim};
   check(nc_def_var(ncid, "x_bnds", NC_DOUBLE, 2, xbDims, &xb), "define x_bnds");

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Hydrodynamic pressure loads from a storm file (hydro/StormLoads, seed 000 section 2.3) against
 // closed-form results: the surface elements, Archimedes on closed units, exact integration of a
-// linear pressure field, the cost rules (elements outside the trunk, dry and out-of-grid units, a
-// storm time outside the file) and the Weibull variability (draws, reproducible, zero net force
-// when uniform, unbiased mean). Drag, added mass and restarts: test_hydro_flow.cpp.
+// linear pressure field, the trunk (elements outside a bounded trunk carry no load; a file uniform
+// along y has no bound), the cost rules (dry and out-of-grid units, a storm time outside the file)
+// and the Weibull variability (draws, reproducible, zero net force when uniform, unbiased mean).
+// Drag, added mass and restarts: test_hydro_flow.cpp.
 
 #include "core/Error.hpp"
 #include "hydro/StormLoads.hpp"
@@ -220,6 +221,47 @@ TEST_F(HydroTest, ElementsOutsideTheTrunkCarryNoLoad) {
   StormLoads stage(scene.world, settingsFor(path), "all", path);
   const Loads l = applyAt(stage, scene.world, 0.0);
   EXPECT_NEAR(l.force[b].z(), 0.5 * kRho * kG, 0.01 * 0.5 * kRho * kG);
+}
+
+TEST_F(HydroTest, FileUniformAlongYLoadsUnitsBeyondItsTrunkRange) {
+  // The same still water twice, averaged over y in [-5, 5] m: bounded (a 3D tank's section) and
+  // uniform along y (a 2D tank, which holds at every y). A unit at y = 20 m, outside the range,
+  // gets nothing from the bounded file (skipped, no element sampled) and from the uniform file the
+  // load of the identical unit at y = 0: the fields do not depend on y and both units sit at the
+  // same (x, z) with the same orientation, so their elements sample the same points: equal to
+  // round-off (1e-12 relative), and Archimedes to the 0.5 % of ArchimedesOnSubmergedClosedUnits.
+  storm::StormHeader h = gridHeader(-5.0, 5.0, -10.0, 2.0, 0.5, 0.0, -5.0, 10.0);
+  const std::string bounded = file("bounded.nc");
+  writeStorm(bounded, h, {0.0, 10.0}, hydrostatic(0.0), flat());
+  h.uniformAlongY = true;
+  const std::string uniform = file("uniform.nc");
+  writeStorm(uniform, h, {0.0, 10.0}, hydrostatic(0.0), flat());
+  const double buoyancy = kRho * kG; // library shapes are 1 m^3
+
+  Scene scene;
+  const BodyId inside = scene.add("coreloc", Vec3(0.5, 0.0, -4.0), someOrientation(1));
+  const BodyId beyond = scene.add("coreloc", Vec3(0.5, 20.0, -4.0), someOrientation(1));
+  {
+    StormLoads stage(scene.world, settingsFor(bounded), "all", bounded);
+    const Loads l = applyAt(stage, scene.world, 0.0);
+    EXPECT_NEAR(l.force[inside].z(), buoyancy, 5e-3 * buoyancy);
+    EXPECT_EQ(l.force[beyond], Vec3::Zero());
+    EXPECT_EQ(l.torque[beyond], Vec3::Zero());
+    EXPECT_EQ(stage.evaluatedElements(beyond), 0u);
+    EXPECT_EQ(stage.counters().skippedBodies, 1u) << "outside a bounded file's trunk counts as skipped";
+    EXPECT_EQ(stage.counters().evaluatedBodies, 1u);
+  }
+  {
+    StormLoads stage(scene.world, settingsFor(uniform), "all", uniform);
+    const Loads l = applyAt(stage, scene.world, 0.0);
+    EXPECT_NEAR(l.force[inside].z(), buoyancy, 5e-3 * buoyancy);
+    EXPECT_LT((l.force[beyond] - l.force[inside]).norm(), 1e-12 * buoyancy);
+    EXPECT_LT((l.torque[beyond] - l.torque[inside]).norm(), 1e-12 * buoyancy);
+    EXPECT_EQ(stage.evaluatedElements(beyond), stage.evaluatedElements(inside));
+    EXPECT_GT(stage.evaluatedElements(beyond), 1000u);
+    EXPECT_EQ(stage.counters().skippedBodies, 0u);
+    EXPECT_EQ(stage.counters().evaluatedBodies, 2u);
+  }
 }
 
 // ================================================================================================

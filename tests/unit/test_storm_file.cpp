@@ -230,6 +230,79 @@ TEST_F(StormFileTest, RoundTripDoubleIsExact) {
   }
 }
 
+TEST_F(StormFileTest, UniformAlongYRoundTripsAndIsAlwaysWritten) {
+  // A 2D tank's file says its fields hold at every y; a bounded file says 0 explicitly, and a file
+  // without the attribute (written before it existed) reads as bounded.
+  const auto h = makeHeader();
+  StormHeader uniform = h;
+  uniform.uniformAlongY = true;
+  const auto uniformPath = file("uniform.nc");
+  {
+    StormWriter writer(uniformPath, uniform);
+    writer.append(makeRecord(uniform, 0.0));
+    writer.append(makeRecord(uniform, 0.1));
+    writer.finish();
+  }
+  const auto boundedPath = writeGood("bounded.nc");
+  const auto attribute = [](const std::string& path) {
+    EditFile f(path);
+    nc_type type = NC_NAT;
+    std::size_t length = 0;
+    EXPECT_EQ(nc_inq_att(f.ncid, NC_GLOBAL, "uniform_along_y", &type, &length), NC_NOERR) << path;
+    EXPECT_EQ(type, NC_INT);
+    EXPECT_EQ(length, 1u);
+    int value = -1;
+    EXPECT_EQ(nc_get_att_int(f.ncid, NC_GLOBAL, "uniform_along_y", &value), NC_NOERR);
+    return value;
+  };
+  EXPECT_EQ(attribute(uniformPath), 1);
+  EXPECT_EQ(attribute(boundedPath), 0);
+  {
+    StormReader reader(uniformPath);
+    EXPECT_TRUE(reader.header().uniformAlongY);
+    // The y range averaged is still recorded.
+    EXPECT_EQ(reader.header().trunkOrigin, h.trunkOrigin);
+    EXPECT_EQ(reader.header().trunkLength, h.trunkLength);
+  }
+  EXPECT_FALSE(StormReader(boundedPath).header().uniformAlongY);
+  {
+    EditFile f(uniformPath);
+    ASSERT_EQ(nc_del_att(f.ncid, NC_GLOBAL, "uniform_along_y"), NC_NOERR);
+  }
+  EXPECT_FALSE(StormReader(uniformPath).header().uniformAlongY) << "absent must read as 0 (older files)";
+}
+
+TEST_F(StormFileTest, ReaderRefusesUniformAlongYOtherThanZeroOrOne) {
+  const auto path = writeGood("uniform_bad.nc");
+  {
+    EditFile f(path);
+    const int two = 2;
+    ASSERT_EQ(nc_put_att_int(f.ncid, NC_GLOBAL, "uniform_along_y", NC_INT, 1, &two), NC_NOERR);
+  }
+  expectInputError([&] { StormReader reader(path); }, {path, "uniform_along_y = 2", "0", "1", "ncatted"});
+  {
+    EditFile f(path);
+    const std::string yes = "yes";
+    ASSERT_EQ(nc_put_att_text(f.ncid, NC_GLOBAL, "uniform_along_y", yes.size(), yes.c_str()), NC_NOERR);
+  }
+  expectInputError([&] { StormReader reader(path); }, {path, "uniform_along_y", "'yes'", "one integer", "ncatted"});
+  {
+    // 1.0 as a double: the meaning is clear, but the layout says int; refusing keeps one spelling.
+    EditFile f(path);
+    ASSERT_EQ(nc_del_att(f.ncid, NC_GLOBAL, "uniform_along_y"), NC_NOERR);
+    const double one = 1.0;
+    ASSERT_EQ(nc_put_att_double(f.ncid, NC_GLOBAL, "uniform_along_y", NC_DOUBLE, 1, &one), NC_NOERR);
+  }
+  expectInputError([&] { StormReader reader(path); }, {path, "uniform_along_y", "one integer"});
+  {
+    EditFile f(path);
+    ASSERT_EQ(nc_del_att(f.ncid, NC_GLOBAL, "uniform_along_y"), NC_NOERR);
+    const short one = 1;
+    ASSERT_EQ(nc_put_att_short(f.ncid, NC_GLOBAL, "uniform_along_y", NC_SHORT, 1, &one), NC_NOERR);
+  }
+  EXPECT_TRUE(StormReader(path).header().uniformAlongY) << "any integer type holding 1 is accepted";
+}
+
 TEST_F(StormFileTest, FillValueStoredWhereSamplesIsZero) {
   // The file itself (as ncdump or Python see it) holds _FillValue in the voxels without data and
   // the CF attributes of docs/storm-file.md.

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// foam-proxy's reading of the surfaces function object's output (proxy/SurfaceSeries) and the
-// comparison used by the alpha/beta calibration (proxy/ProxyRun compareStorms).
+// foam-proxy's reading of the surfaces function object's output (proxy/SurfaceSeries), the storm
+// file of a 2D run declared uniform along y (proxy/ProxyRun sampleSurfaces, functionDictionaries) and
+// the comparison used by the alpha/beta calibration (proxy/ProxyRun compareStorms).
 
 #include "proxy/ProxyRun.hpp"
 #include "proxy/SurfaceSeries.hpp"
 
 #include "core/Error.hpp"
+#include "storm/StormFile.hpp"
 
 #include <gtest/gtest.h>
 
@@ -131,6 +133,63 @@ TEST(SurfaceSeries, ListsNumericTimeFoldersInOrder) {
   fs::remove_all(d);
 }
 
+// A 2D run's output as the stock sets function objects of `foam-proxy dict --2d` write it: 2 x 2
+// voxels of 1 m from (0, 0), still water up to z = 1 m, one cell across (y in [0, 1] m). The storm
+// file says uniform_along_y = 1 only when asked (--uniform-along-y), and the armourSampler
+// dictionary carries the same setting.
+TEST(SampleSurfaces, UniformAlongYIsDeclaredOnlyWhenAsked) {
+  const fs::path d = tempDir("uniform");
+  for (const char* t : {"0.1", "0.2"}) {
+    const fs::path sets = d / "postProcessing" / "armourSets" / t;
+    const fs::path centres = d / "postProcessing" / "armourCentres" / t;
+    fs::create_directories(sets);
+    fs::create_directories(centres);
+    // eta: alpha at cell centres 0.25 m apart around the still water level of each column.
+    std::ofstream eta(sets / "etaCells_alpha.water.xy");
+    for (const double x : {0.5, 1.5}) {
+      for (const double z : {0.25, 0.75, 1.25, 1.75}) eta << x << " 0.5 " << z << " " << (z < 1.0 ? 1 : 0) << "\n";
+    }
+    std::ofstream scalars(centres / "voxelCentres_alpha.water_p.xy");
+    std::ofstream velocity(centres / "voxelCentres_U.xy");
+    for (const double z : {0.5, 1.5}) {
+      for (const double x : {0.5, 1.5}) {
+        scalars << x << " 0.5 " << z << " " << (z < 1.0 ? 1 : 0) << " " << (z < 1.0 ? 4905.0 : 0.0) << "\n";
+        velocity << x << " 0.5 " << z << " 0.25 0 -0.125\n";
+      }
+    }
+  }
+  proxy::SampleOptions o;
+  o.caseDir = d;
+  o.twoD = true;
+  o.sampler.grid.xMin = 0.0;
+  o.sampler.grid.zMin = 0.0;
+  o.sampler.grid.dx = 1.0;
+  o.sampler.grid.dz = 1.0;
+  o.sampler.grid.nx = 2;
+  o.sampler.grid.nz = 2;
+  o.sampler.grid.trunkOrigin = 0.0;
+  o.sampler.grid.trunkLength = 1.0;
+  o.sampler.stillWaterLevel = 1.0;
+  o.sampler.waterDensity = 1000.0;
+  for (const bool uniform : {false, true}) {
+    o.sampler.uniformAlongY = uniform;
+    o.output = d / (uniform ? "uniform.nc" : "bounded.nc");
+    const proxy::SampleSummary s = proxy::sampleSurfaces(o);
+    EXPECT_EQ(s.records, 2u);
+    const storm::StormReader r(o.output.string());
+    EXPECT_EQ(r.header().uniformAlongY, uniform);
+    // The y range averaged is recorded either way.
+    EXPECT_EQ(r.header().trunkOrigin, 0.0);
+    EXPECT_EQ(r.header().trunkLength, 1.0);
+    storm::StormRecord rec;
+    r.read(1, rec);
+    EXPECT_FLOAT_EQ(static_cast<float>(rec.p[0]), 4905.0f); // stored as float
+    const std::string dict = proxy::functionDictionaries(o, {"unit_.*"}, 0.05, "libarmourSampler.so", "sampler");
+    EXPECT_NE(dict.find(uniform ? "uniformAlongY   true;" : "uniformAlongY   false;"), std::string::npos) << dict;
+  }
+  fs::remove_all(d);
+}
+
 // The calibration metrics against known signals: a candidate equal to the reference delayed by
 // 0.2 s has that phase lag; a candidate with an error of 10 % of the amplitude everywhere has a
 // normalised error of 0.1 / (1 / sqrt 2) = 0.141.
@@ -197,7 +256,9 @@ TEST(CombineStorms, TakesRecordsFromOneAndVariabilityFromTheOther) {
     }
     w.finish();
   };
-  write(d / "sea.nc", header(10.0), 1000.0);
+  storm::StormHeader sea = header(10.0);
+  sea.uniformAlongY = true; // a 2D sea-state run
+  write(d / "sea.nc", sea, 1000.0);
   storm::StormHeader h3 = header(20.0);
   h3.variability.present = true;
   h3.variability.classes[0] = {1.7, 0.08, 0.01, 5000};
@@ -210,6 +271,7 @@ TEST(CombineStorms, TakesRecordsFromOneAndVariabilityFromTheOther) {
   proxy::combineStorms(d / "sea.nc", d / "3d.nc", d / "storm.nc", storm::Provenance(), storm::StormWriteOptions());
   const storm::StormReader r((d / "storm.nc").string());
   EXPECT_EQ(r.header().x[0], 10.0);
+  EXPECT_TRUE(r.header().uniformAlongY) << "the combined file keeps the sea state's y extent";
   ASSERT_EQ(r.times().size(), 3u);
   storm::StormRecord rec;
   r.read(2, rec);
