@@ -212,7 +212,7 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
   run.variabilitySeed = m.stormSeed;
   runScene(run);
   const io::Scene scene = io::readScene(placedScene);
-  const PoseMap before = readPoses(placedScene);
+  const PoseMap before = posesOf(scene);
   const PoseMap after = readPoses(m.run / "final_state.csv");
   AnalyseSettings settings;
   settings.unitPrefix = unitPrefix;

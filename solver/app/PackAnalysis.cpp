@@ -39,14 +39,16 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 } // namespace
 
+PoseMap posesOf(const io::Scene& scene) {
+  PoseMap poses;
+  for (const io::Body& b : scene.bodies) poses[b.name] = {b.position, b.orientation};
+  return poses;
+}
+
 PoseMap readPoses(const std::filesystem::path& path) {
   PoseMap poses;
   const std::string ext = path.extension().string();
-  if (ext == ".yaml" || ext == ".yml") {
-    const io::Scene scene = io::readScene(path);
-    for (const io::Body& b : scene.bodies) poses[b.name] = {b.position, b.orientation};
-    return poses;
-  }
+  if (ext == ".yaml" || ext == ".yml") return posesOf(io::readScene(path));
   std::ifstream in(path);
   if (!in) core::failInput(path.string(), "cannot open the state file; give a run's final_state.csv or a scene file");
   std::string line;

@@ -36,6 +36,9 @@ using PoseMap = std::map<std::string, BodyPose>;
 /// file (its bodies). Throws core::InputError naming the file and line.
 PoseMap readPoses(const std::filesystem::path& path);
 
+/// The poses of a scene's bodies, by name.
+PoseMap posesOf(const io::Scene& scene);
+
 struct AnalyseSettings {
   std::string unitPrefix;          ///< units are the movable bodies whose name starts with it (empty: all)
   std::string axis = "nose";       ///< the unit axis for orientations and P2 (analysis::unitAxesOf)

@@ -304,6 +304,8 @@ private:
   [[nodiscard]] double externalPower() const;
   // WorldSleep.cpp: contact islands, sleeping and waking.
   void updateSleep(double dt);
+  /// A sleeping body woke: restart the energy guard's reference (WorldSleep.cpp says why).
+  void energyWakeReset();
   // WorldEnergy.cpp: the energy guard rail.
   void checkEnergy();
 

@@ -12,10 +12,23 @@ namespace armour::simulation {
 using detail::kStaticBits;
 
 void World::wakeAll() {
+  bool woke = false;
   for (BodyId b = 0; b < bodies_.size(); ++b) {
-    if (bodies_.motionType(b) == dynamics::MotionType::Sleeping) bodies_.wake(b);
+    if (bodies_.motionType(b) == dynamics::MotionType::Sleeping) {
+      bodies_.wake(b);
+      woke = true;
+    }
     if (b < restTime_.size()) restTime_[b] = 0.0;
   }
+  if (woke) energyWakeReset();
+}
+
+void World::energyWakeReset() {
+  // The elastic energy of contacts between sleeping (or sleeping and static) bodies is not
+  // evaluated while they sleep, so it leaves E when they fall asleep and comes back when they
+  // wake: growth the energy guard would read as an instability (6e5 J, more than its tolerance,
+  // when the settled 242-unit trunk was woken). A wake restarts the guard's reference instead.
+  energyStarted_ = false;
 }
 
 void World::motionTypesChanged() {
@@ -45,6 +58,7 @@ void World::updateSleep(double dt) {
               st.wakeLoadFraction * bodies_.info(b).mass * settings_.gravity.norm()) {
         bodies_.wake(b);
         restTime_[b] = 0.0;
+        energyWakeReset();
       }
     }
   }
@@ -83,6 +97,7 @@ void World::updateSleep(double dt) {
     bodies_.wake(b);
     restTime_[b] = 0.0;
   }
+  if (!toWake.empty()) energyWakeReset();
   // An island sleeps when every awake member has rested long enough.
   std::vector<char> islandRestless(n, 0);
   for (BodyId b : bodies_.awakeBodies()) {
