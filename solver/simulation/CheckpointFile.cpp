@@ -439,20 +439,18 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
                                "friction spring: tangential stretch, world frame");
     const int sliding =
         define("contact_sliding", NC_UBYTE, {contactDim}, "1", "friction spring: sliding (1) or stuck (0)");
-    int identity = -1;
-    if (!c.sceneIdentity.empty()) {
-      int idDim = -1;
-      w.check(nc_def_dim(ncid, "identity_length", c.sceneIdentity.size(), &idDim), "define a dimension");
-      identity = define("scene_identity", NC_CHAR, {idDim}, nullptr,
-                        "the resolved scene that scene_fingerprint hashes (duration and output settings left out)");
-    }
-    int application = -1;
-    if (!c.applicationState.empty()) {
-      int appDim = -1;
-      w.check(nc_def_dim(ncid, "application_state_length", c.applicationState.size(), &appDim), "define a dimension");
-      application = define("application_state", NC_CHAR, {appDim}, nullptr,
-                           "the command's own state around the World (armour place: placement progress)");
-    }
+    // Optional texts: a char variable over its own length dimension, left out when empty.
+    const auto defineText = [&](const char* name, const char* dimName, const std::string& text, const char* longName) {
+      if (text.empty()) return -1;
+      int dim = -1;
+      w.check(nc_def_dim(ncid, dimName, text.size(), &dim), "define a dimension");
+      return define(name, NC_CHAR, {dim}, nullptr, longName);
+    };
+    const int identity = defineText("scene_identity", "identity_length", c.sceneIdentity,
+                                    "the resolved scene that scene_fingerprint hashes (duration and output settings "
+                                    "left out)");
+    const int application = defineText("application_state", "application_state_length", c.applicationState,
+                                       "the command's own state around the World (armour place: placement progress)");
     w.check(nc_enddef(ncid), "finish the header");
 
     const auto put = [&](int var, const auto& values) {
@@ -613,20 +611,19 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
 
   // The scene first: a changed scene explains any mismatch that follows.
   int unused = -1;
-  if (nc_inq_varid(r.id(), "scene_identity", &unused) == NC_NOERR) {
-    int idDim = -1;
-    const std::size_t length = r.dimension("identity_length", idDim);
+  // Optional texts: absent = "".
+  const auto readText = [&](const char* name, const char* dimName) {
+    std::string out;
+    if (nc_inq_varid(r.id(), name, &unused) != NC_NOERR) return out;
+    int dim = -1;
+    const std::size_t length = r.dimension(dimName, dim);
     std::vector<char> text;
-    r.get("scene_identity", r.variable("scene_identity", NC_CHAR, {idDim}), length, text);
-    c.sceneIdentity.assign(text.begin(), text.end());
-  }
-  if (nc_inq_varid(r.id(), "application_state", &unused) == NC_NOERR) {
-    int appDim = -1;
-    const std::size_t length = r.dimension("application_state_length", appDim);
-    std::vector<char> text;
-    r.get("application_state", r.variable("application_state", NC_CHAR, {appDim}), length, text);
-    c.applicationState.assign(text.begin(), text.end());
-  }
+    r.get(name, r.variable(name, NC_CHAR, {dim}), length, text);
+    out.assign(text.begin(), text.end());
+    return out;
+  };
+  c.sceneIdentity = readText("scene_identity", "identity_length");
+  c.applicationState = readText("application_state", "application_state_length");
   if (!expect.sceneFingerprint.empty() && expect.sceneFingerprint != c.sceneFingerprint) {
     std::string change = "(the checkpoint does not hold the scene text, so the change cannot be named)";
     if (!c.sceneIdentity.empty() && !expect.sceneIdentity.empty()) {
