@@ -75,7 +75,11 @@ void placeScene(const PlaceOptions& o) {
   // Checkpoints: the World's state plus the placement's own progress, for the scene as resolved
   // (its identity) and the placement file's text as run (with the --set changes).
   const std::string effectiveText = io::applyOverridesToText(text.str(), o.sets, o.file);
-  const std::string identity = simulation::sceneIdentity(scene) + "# placement file as run\n" + effectiveText;
+  // Hydro settings do not act on a placement, and its storm file may not exist yet (written after
+  // the pack, as scripts/fidelity-ladder does): the identity leaves them out (the text keeps them).
+  io::Scene identified = scene;
+  identified.hydro = hydro::HydroSettings{};
+  const std::string identity = simulation::sceneIdentity(identified) + "# placement file as run\n" + effectiveText;
   const std::string fingerprint = simulation::fingerprintOf(identity);
   const fs::path checkpointPath = scene.output.folder / "place-checkpoint.nc";
   std::optional<placement::PlacementProgress> resume;
