@@ -74,7 +74,7 @@ std::string encodeProgress(const PlacementProgress& p) {
   out += fmt::format("units_done {}\nfinal_settle {}\nround {}\n", p.unitsDone, p.finalSettle ? 1 : 0, p.round);
   out += fmt::format("settle_start {}\nround_start {}\nround_start_step {}\nstill_since {}\nwall_seconds {}\n",
                      hex(p.settleStart), hex(p.roundStart), p.roundStartStep, hex(p.stillSince), hex(p.wallSeconds));
-  out += fmt::format("summary {} {} {}\n", p.summary.rocks, p.summary.cappedUnits, p.summary.settleCappedUnits);
+  out += fmt::format("capped {} {}\n", p.summary.cappedUnits, p.summary.settleCappedUnits);
   for (const std::string& name : p.summary.drifted) out += fmt::format("drifted {}\n", name);
   for (const Vec3& x : p.roundBefore) out += fmt::format("before {} {} {}\n", hex(x.x()), hex(x.y()), hex(x.z()));
   for (const AddedBody& b : p.bodies)
@@ -115,8 +115,7 @@ PlacementProgress decodeProgress(const std::string& text, const std::string& whe
     else if (key == "round_start_step") p.roundStartStep = line.count();
     else if (key == "still_since") p.stillSince = line.number();
     else if (key == "wall_seconds") p.wallSeconds = line.number();
-    else if (key == "summary") {
-      p.summary.rocks = static_cast<int>(line.count());
+    else if (key == "capped") {
       p.summary.cappedUnits = static_cast<int>(line.count());
       p.summary.settleCappedUnits = static_cast<int>(line.count());
     } else if (key == "drifted") p.summary.drifted.push_back(line.rest());

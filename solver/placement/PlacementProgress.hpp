@@ -89,7 +89,7 @@ struct PlacementProgress {
   std::vector<UnitRecord> units; ///< the records of the units placed so far
   std::vector<std::size_t> frozen; ///< settle_each: World bodies held fixed until the release
   std::vector<double> settleDrifts; ///< settle_each: each unit's drift in its own settle (unit: Dn)
-  PlacementSummary summary;      ///< the counts so far (rocks, capped units, drifted units)
+  PlacementSummary summary;      ///< the counts so far: capped units and drifted units (the rocks are the fixed bodies)
   double wallSeconds = 0.0;      ///< wall time spent up to here, earlier sessions included (unit: s)
   simulation::WorldState world;  ///< not encoded: stored as the checkpoint's own variables
 };

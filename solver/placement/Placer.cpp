@@ -498,7 +498,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       const AddedBody& r = added[b - givenBodies];
       scene.bodies.push_back(sceneBody(world, b, r.name, r.sceneShape, r.material, r.volume, true));
     }
-    result.summary.rocks = resume->summary.rocks;
     log->info("continuing from the checkpoint: {} rocks and {} units placed, t = {:.3f} s{}", rockBodies.size(),
               resume->unitsDone, world.time(), resume->finalSettle ? ", in the final settle" : "");
   }
@@ -534,7 +533,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     p.units = result.units;
     p.frozen.assign(frozen.begin(), frozen.end());
     p.settleDrifts = settleDrifts;
-    p.summary.rocks = static_cast<int>(rockBodies.size());
     p.summary.cappedUnits = result.summary.cappedUnits;
     p.summary.settleCappedUnits = result.summary.settleCappedUnits;
     p.summary.drifted = result.summary.drifted;
