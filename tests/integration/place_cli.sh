@@ -93,6 +93,11 @@ grep -q "place-checkpoint.nc" <<< "$msg" || fail "unclear message: $msg"
 
 # Refusals.
 set +e
+msg=$("$armour" place "$out/dolos.yaml" --checkpoint-minutes -1 2>&1); code=$?
+set -e
+[[ $code -eq 2 ]] || fail "--checkpoint-minutes -1: exit $code"
+grep -q -- "--checkpoint-minutes.*-1: give the wall time between checkpoints in minutes" <<< "$msg" || fail "unclear message: $msg"
+set +e
 msg=$("$armour" place "$cases/../../tests/data/scenes/block-on-slope.yaml" 2>&1); code=$?
 set -e
 [[ $code -eq 2 ]] || fail "a scene without placement: exit $code"
