@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -200,6 +201,17 @@ void applyStorm(io::Scene& scene, const RunRequest& o) {
 }
 
 
+/// The --set changes to read the scene with. `armour storm` names the storm file on the command
+/// line, so a placed scene has no hydro block; a `--set hydro.storm.<key>=...` would then make one
+/// without its required file: the storm file is set first (applyStorm puts the same file on it).
+std::vector<std::string> sceneSets(const RunRequest& o) {
+  std::vector<std::string> sets = o.sets;
+  const bool hydroSet =
+      std::any_of(sets.begin(), sets.end(), [](const std::string& s) { return s.rfind("hydro.storm.", 0) == 0; });
+  if (!o.stormFile.empty() && hydroSet) sets.insert(sets.begin(), "hydro.storm.file=" + fs::absolute(o.stormFile).string());
+  return sets;
+}
+
 } // namespace
 
 void runScene(const RunRequest& o) {
@@ -209,7 +221,7 @@ void runScene(const RunRequest& o) {
   if (o.threads > 0) {
     omp_set_num_threads(o.threads); // before the build line, which reports the thread count
   }
-  io::Scene scene = io::readScene(o.scene, o.sets);
+  io::Scene scene = io::readScene(o.scene, sceneSets(o));
   if (o.durationGiven) {
     if (!(o.duration > 0.0) || !std::isfinite(o.duration)) {
       core::failInput("--duration", "{} s: give a positive simulated time in seconds", o.duration);

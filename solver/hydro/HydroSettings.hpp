@@ -46,6 +46,10 @@ struct StormLoadSettings {
   std::string file;                 ///< storm file; relative paths are relative to the scene file
   double timeOffset = 0.0;          ///< storm time at simulation time 0 (unit: s)
   double updateInterval = 0.1;      ///< loads recomputed every this much simulated time (unit: s); seed 000: 0.1
+  /// The loads rise from zero over the first rampTime of simulated time by the half cosine
+  /// r(t) = (1 - cos(pi t / rampTime)) / 2, so that water put on a pack placed dry does not hit it
+  /// at once; 0 = full loads from the first step (unit: s).
+  double rampTime = 0.0;
   BetweenUpdates betweenUpdates = BetweenUpdates::Hold;
   double wetAlpha = 0.5;            ///< below this water fraction an element feels atmospheric pressure (unit: -)
   /// Target edge length of the surface elements that carry pressure, as a fraction of the unit's Dn

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace armour::hydro {
 namespace {
@@ -399,6 +400,13 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   }
 }
 
+double StormLoads::rampFactor(double time) const {
+  const double T = settings_.rampTime;
+  if (!(T > 0.0) || time >= T) return 1.0;
+  if (time <= 0.0) return 0.0;
+  return 0.5 * (1.0 - std::cos(std::numbers::pi * time / T));
+}
+
 HeldLoad StormLoads::current(BodyId b, double time) const {
   if (settings_.betweenUpdates == BetweenUpdates::Hold) {
     return held_[0][b];
@@ -419,6 +427,7 @@ void StormLoads::apply(const simulation::World& world, double time, std::span<dy
   const auto& bodies = world.bodies();
   const Vec3 gravity = world.settings().gravity;
   const double halfRhoCd = 0.5 * rho_ * settings_.drag.coefficient;
+  const double ramp = rampFactor(time);
   const auto n = static_cast<std::int64_t>(loaded_.size());
 #pragma omp parallel for schedule(static) if (n >= 1024)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -428,7 +437,13 @@ void StormLoads::apply(const simulation::World& world, double time, std::span<dy
     if (!loaded_[b] || bodies.motionType(b) == dynamics::MotionType::Static) {
       continue;
     }
-    const HeldLoad load = current(b, time);
+    HeldLoad load = current(b, time);
+    if (ramp < 1.0) {
+      load.pressureForce *= ramp;
+      load.pressureTorque *= ramp;
+      load.meanVelocity *= ramp;
+      load.fluidAcceleration *= ramp;
+    }
     out.pressureForce = load.pressureForce;
     out.pressureTorque = load.pressureTorque;
     if (load.wetFraction > 0.0) {

@@ -20,6 +20,9 @@
 ///    (F_c + F_p + F_D + F_x) / m + g into (F_c + F_p + F_D + m g + m_a a_f) / (m + m_a): the added
 ///    mass only ever adds inertia (no dv/dt feedback, stable for any unit density).
 ///
+/// Ramp: with rampTime T > 0, F_p, M_p, u and a_f are multiplied by r(t) = (1 - cos(pi t / T)) / 2
+/// for simulation times t < T (a pack placed dry meets the water gradually, as a flume is filled).
+///
 /// Updates: F_p, M_p, u, the wet fraction and a_f (the storm's du/dt over the wet elements) are
 /// computed at the update times t_k = k updateInterval (simulation time) with the positions of that
 /// moment, and held until the next (Hold, seed 000), or computed one interval ahead and blended
@@ -119,6 +122,9 @@ public:
   /// Surface elements and projected-area table of a shape (built for shapes of loaded bodies only).
   [[nodiscard]] const SurfaceElements& elements(simulation::ShapeId shape) const;
   [[nodiscard]] const ProjectedAreaTable& areaTable(simulation::ShapeId shape) const;
+  /// The factor of the load ramp at simulation time `time` (StormLoadSettings::rampTime): 0 at 0,
+  /// (1 - cos(pi t / T)) / 2 up to T, 1 from then on (and without a ramp) (unit: -).
+  [[nodiscard]] double rampFactor(double time) const;
   /// Simulation time of the last update, or -1 before the first (unit: s).
   [[nodiscard]] double lastUpdateTime() const;
 

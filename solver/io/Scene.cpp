@@ -237,8 +237,9 @@ std::string describeScene(const Scene& s) {
       const hydro::StormLoadSettings& st = h.storm;
       line("  model = storm");
       line(fmt::format("  file = {}", st.file));
-      line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}", st.timeOffset,
-                       st.updateInterval, st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate"));
+      line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}, ramp_time = {} s",
+                       st.timeOffset, st.updateInterval,
+                       st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate", st.rampTime));
       line(fmt::format("  wet_alpha = {} (-), element_size = {} Dn, pressure = {}", st.wetAlpha, st.elementSizePerDn,
                        st.pressure));
       line(fmt::format("  variability: enabled = {}, seed = {}, patches_per_axis = {}", st.variability.enabled,

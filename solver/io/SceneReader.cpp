@@ -646,8 +646,9 @@ void readRunSettings(const Block& top, Scene& scene) {
 
 const KeyList kHydroKeys{"model", "bodies", "storm", "oscillating", "shallow_wave"};
 const KeyList kHydroModels{"storm", "oscillating", "shallow_wave"};
-const KeyList kStormLoadKeys{"file",      "time_offset",  "update_interval", "between_updates", "wet_alpha",
-                             "element_size", "pressure", "variability",     "drag",            "added_mass"};
+const KeyList kStormLoadKeys{"file",         "time_offset", "update_interval", "ramp_time", "between_updates",
+                             "wet_alpha",    "element_size", "pressure",       "variability", "drag",
+                             "added_mass"};
 const KeyList kVariabilityKeys{"enabled", "seed", "patches_per_axis"};
 const KeyList kDragKeys{"enabled", "coefficient"};
 const KeyList kOscillatingKeys{"amplitude", "period", "wave_number", "z_min", "z_swl", "z_max", "waves"};
@@ -678,6 +679,8 @@ void readHydro(const Block& top, Scene& scene) {
                   .string();
     st.timeOffset = s.number("time_offset", {"s", kNonNegative, "0: storm time at simulation time 0"}, st.timeOffset);
     st.updateInterval = s.number("update_interval", {"s", kPositive, "0.1 (seed 000)"}, st.updateInterval);
+    st.rampTime = s.number("ramp_time", {"s", kNonNegative, "2 (the loads rise from zero over the first 2 s)"},
+                           st.rampTime);
     st.betweenUpdates = static_cast<hydro::BetweenUpdates>(s.choice("between_updates", {"hold", "interpolate"}, 0));
     st.wetAlpha = s.number("wet_alpha", {"-", Range{0.0, 1.0, true, true}, "0.5"}, st.wetAlpha);
     st.elementSizePerDn = s.number("element_size", {"Dn", Range{0.0, 1.0, true, false}, "0.1 (4640 elements on a "

@@ -60,4 +60,10 @@ grep -q "hydro: [0-9]* load updates; 0 of [0-9]* unit evaluations skipped (0.0 %
   > "$out/dry.txt" 2>&1 || fail "armour storm (dry) failed: $(cat "$out/dry.txt")"
 grep -q "hydro: 20 load updates; 80 of 80 unit evaluations skipped (100.0 %" "$out/dry/run.log" \
   || fail "dry units were not reported skipped: $(grep 'load updates' "$out/dry/run.log")"
+# A storm setting changed on the command line of a placed scene, which has no hydro block: the
+# storm file of --storm completes the block (the load ramp shows in the log's scene summary).
+"$armour" --log-level warn storm "$out/dolos-placed.yaml" --storm "$out/dry.nc" --threads 1 -o "$out/dry-ramp" \
+  --duration 0.5 --set hydro.storm.ramp_time=1 > "$out/dry-ramp.txt" 2>&1 \
+  || fail "armour storm --set hydro.storm.ramp_time=1 failed: $(cat "$out/dry-ramp.txt")"
+grep -q "ramp_time = 1 s" "$out/dry-ramp/run.log" || fail "the ramp is not in the run log: $(grep time_offset "$out/dry-ramp/run.log")"
 echo "storm_still: OK ($asleep % of the body-steps asleep; dry units skipped)"

@@ -2,7 +2,7 @@
 // Hydrodynamic flow loads from a storm file (hydro/StormLoads, seed 000 section 2.3) against
 // closed-form results: the projected-area table (cube face-on and along a diagonal, a sphere, a
 // non-convex union, a Core-Loc), Morison drag of a cube, a unit at rest on a slope under water,
-// added mass (buoyant acceleration and terminal velocity), the update modes between records (hold,
+// the load ramp, added mass (buoyant acceleration and terminal velocity), the update modes between records (hold,
 // interpolate) and bit-identical restarts and thread counts. Pressure integration, the cost rules
 // and the variability: test_hydro_pressure.cpp.
 
@@ -327,6 +327,94 @@ TEST_F(HydroTest, CubeOnASubmergedSlopeStaysAtRest) {
   EXPECT_LT(drift, 1e-3);
   // The load it rests under is the buoyancy.
   EXPECT_NEAR(scene.world.externalForce(b).z(), kRho * kG, 0.005 * kRho * kG);
+}
+
+// ================================================================================================
+// Load ramp
+
+TEST_F(HydroTest, LoadRampRisesAsAHalfCosineFromZero) {
+  // Still water 6 m deep with a uniform current of 1.3 m/s over it: on a cube at rest the pressure
+  // force is the buoyancy, the drag 1/2 rho C_d A U^2. With ramp_time T the pressure force is
+  // r(t) times the unramped one and the drag r(t)^2 times (the flow velocity is ramped, the drag
+  // is quadratic in it), r = (1 - cos(pi t / T)) / 2; from T on, both are the unramped loads.
+  // Same samples, same arithmetic: 1e-12 relative.
+  const std::string path = file("current.nc");
+  writeStorm(path, gridHeader(-5.0, 5.0, -8.0, 2.0, 0.5, 0.0), {0.0, 10.0},
+             [](double, double, double z) {
+               Flow f = hydrostatic(0.0)(0.0, 0.0, z);
+               f.u = z < 0.0 ? 1.3 : 0.0;
+               return f;
+             },
+             flat());
+  const double T = 2.0;
+  for (const double t : {0.0, 0.3, 0.5, 1.0, 1.7, 2.0, 3.5}) {
+    Scene scene;
+    const BodyId b = scene.add("cube", Vec3(0.0, 0.0, -4.0));
+    hydro::StormLoadSettings plain = settingsFor(path);
+    hydro::StormLoadSettings ramped = plain;
+    ramped.rampTime = T;
+    StormLoads full(scene.world, plain, "all", path);
+    StormLoads stage(scene.world, ramped, "all", path);
+    const double r = t >= T ? 1.0 : 0.5 * (1.0 - std::cos(std::numbers::pi * t / T));
+    EXPECT_NEAR(stage.rampFactor(t), r, 1e-15) << "t = " << t;
+    applyAt(full, scene.world, t);
+    applyAt(stage, scene.world, t);
+    const hydro::AppliedLoad& a = full.applied(b);
+    const hydro::AppliedLoad& c = stage.applied(b);
+    ASSERT_GT(a.pressureForce.z(), 0.9 * kRho * kG);
+    ASSERT_GT(a.dragForce.x(), 0.0);
+    EXPECT_NEAR(c.pressureForce.z(), r * a.pressureForce.z(), 1e-12 * a.pressureForce.z()) << "t = " << t;
+    EXPECT_NEAR(c.dragForce.x(), r * r * a.dragForce.x(), 1e-12 * a.dragForce.x()) << "t = " << t;
+  }
+}
+
+TEST_F(HydroTest, RampedWaterMeetsAUnitAtRestWithoutAKick) {
+  // A 1 m cube at rest on a floor (settled dry for 2 s), then 5 m of still water. Switched on at
+  // once, buoyancy unloads 43 % of the contact's compression in one step: the cube springs up at
+  // about 0.43 delta omega (delta the dry compression, omega the contact's frequency). Ramped over
+  // T = 1 s the unloading is quasi-static, its speed ~0.43 delta pi / (2 T), a fraction
+  // pi / (2 T omega) < 1 % of the kick for any contact stiff enough to hold the cube (omega >
+  // 160 rad/s); 5 % is the bound. Both end at the same wet equilibrium (1e-6 m).
+  const std::string path = file("deep.nc");
+  writeStorm(path, gridHeader(-4.0, 4.0, -2.0, 8.0, 0.5, 5.0), {0.0, 10.0}, hydrostatic(5.0), flat());
+  const auto build = [](Scene& scene) {
+    scene.world.addPlane({"floor", Vec3::Zero(), Vec3::UnitZ(), scene.material(2400.0)});
+    return scene.add("cube", Vec3(0.0, 0.0, 0.5));
+  };
+  Scene dry;
+  build(dry);
+  dry.world.advanceTo(2.0);
+  const simulation::WorldState settled = dry.world.captureState();
+  struct Result {
+    double peakSpeed = 0.0, finalZ = 0.0;
+  };
+  const auto wet = [&](double rampTime) {
+    Scene scene;
+    const BodyId b = build(scene);
+    hydro::StormLoadSettings s = settingsFor(path);
+    s.rampTime = rampTime;
+    scene.world.addLoadStage(std::make_shared<StormLoads>(scene.world, s, "all", path));
+    simulation::WorldState start = settled; // the dry rest, at time 0, with the water's stage
+    start.time = 0.0;
+    start.steps = 0;
+    start.energyStarted = false;
+    start.loadStages = scene.world.captureState().loadStages;
+    scene.world.restoreState(start);
+    Result r;
+    while (scene.world.time() < 3.0) {
+      scene.world.step();
+      r.peakSpeed = std::max(r.peakSpeed, scene.world.bodies().velocity(b).norm());
+    }
+    r.finalZ = scene.world.bodies().position(b).z();
+    return r;
+  };
+  const Result abrupt = wet(0.0), ramped = wet(1.0);
+  RecordProperty("abrupt_peak_speed_m_per_s", fmt::format("{:.3e}", abrupt.peakSpeed));
+  RecordProperty("ramped_peak_speed_m_per_s", fmt::format("{:.3e}", ramped.peakSpeed));
+  ASSERT_GT(abrupt.peakSpeed, 0.0);
+  EXPECT_LT(ramped.peakSpeed, 0.05 * abrupt.peakSpeed);
+  EXPECT_NEAR(ramped.finalZ, abrupt.finalZ, 1e-6);
+  EXPECT_GT(ramped.finalZ, settled.bodies[0].position.z()); // the wet cube presses less on the floor
 }
 
 // ================================================================================================

@@ -753,6 +753,8 @@ TEST(SceneHydro, StormBlockWithDefaults) {
   const std::string text = describeScene(s);
   EXPECT_CONTAINS(text, "model = storm");
   EXPECT_CONTAINS(text, "update_interval = 0.1 s");
+  EXPECT_EQ(st.rampTime, 0.0) << "no ramp unless asked";
+  EXPECT_CONTAINS(text, "ramp_time = 0 s");
 }
 
 TEST(SceneHydro, EverySettingIsRead) {
@@ -762,6 +764,7 @@ TEST(SceneHydro, EverySettingIsRead) {
     file: s.nc
     time_offset: 120
     update_interval: 0.05
+    ramp_time: 1.5
     between_updates: interpolate
     wet_alpha: 0.4
     element_size: 0.2
@@ -774,6 +777,7 @@ TEST(SceneHydro, EverySettingIsRead) {
   EXPECT_EQ(s.hydro.bodies, "unit_");
   EXPECT_EQ(st.timeOffset, 120.0);
   EXPECT_EQ(st.updateInterval, 0.05);
+  EXPECT_EQ(st.rampTime, 1.5);
   EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Interpolate);
   EXPECT_EQ(st.wetAlpha, 0.4);
   EXPECT_EQ(st.elementSizePerDn, 0.2);
@@ -812,6 +816,8 @@ TEST(SceneHydro, ErrorsNameTheKeyAndTheFix) {
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {fiel: s.nc}\n"), "hydro.storm.fiel: unknown key");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, update_interval: 0}\n"),
                   "hydro.storm.update_interval = 0: must be > 0");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, ramp_time: -1}\n"),
+                  "hydro.storm.ramp_time = -1: must be >= 0");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, between_updates: smooth}\n"),
                   "expected one of hold, interpolate");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: wind\n"), "expected one of storm, oscillating, shallow_wave");
