@@ -45,7 +45,10 @@ struct ReportOptions {
   std::string output;              ///< default: RUN_DIR/report
   std::string prefix;              ///< units: movable bodies whose names start with it (default: the hydro bodies)
   std::string axis = "nose";       ///< unit axis for P2
-  std::vector<double> voxel;       ///< (x, z) of the pressure history (unit: m)
+  std::vector<double> voxel;       ///< (x, z) of the pressure history, in the storm file's coordinates (unit: m)
+  /// The storm file's (x, z) of the scene's origin; default: the scene's hydro.storm.offset when the
+  /// storm is the scene's, else (0, 0) (unit: m).
+  std::vector<double> stormOffset;
   double gaugeX = kNaN;            ///< x of the eta gauge (unit: m); default the slope's toe
   std::string stormWindow = "run"; ///< storm records in storm.csv: "run" (the replayed window) or "all"
   double hs = kNaN;                ///< override of the storm's Hs (unit: m)
@@ -180,6 +183,13 @@ StormSummary summariseStorm(const fs::path& stormPath, const io::Scene& scene, c
   const bool scenesStorm = scene.hydro.enabled && scene.hydro.model == hydro::HydroModel::Storm &&
                            fs::equivalent(stormPath, fs::path(scene.hydro.storm.file), same);
   s.offset = scenesStorm ? scene.hydro.storm.timeOffset : 0.0;
+  // Scene positions in the file's coordinates (hydro.storm.offset: a tank's origin is not the scene's).
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  if (o.stormOffset.size() == 2) {
+    shift = Eigen::Vector3d(o.stormOffset[0], 0.0, o.stormOffset[1]);
+  } else if (scenesStorm) {
+    shift = Eigen::Vector3d(scene.hydro.storm.offsetX, 0.0, scene.hydro.storm.offsetZ);
+  }
   const std::string prov = h.provenance.title + " " + h.provenance.sourceCase + " " + h.provenance.comment;
   s.provHs = provenanceValue(prov, "Hs|Hm0|H");
   s.provTp = provenanceValue(prov, "Tp|T");
@@ -192,7 +202,7 @@ StormSummary summariseStorm(const fs::path& stormPath, const io::Scene& scene, c
   // The gauge: the slope's toe (the waves at the structure), else the offshore column.
   s.gaugeX = o.gaugeX;
   if (!std::isfinite(s.gaugeX))
-    s.gaugeX = scene.statics.slopes.empty() ? h.x.front() : scene.statics.slopes.front().origin.x();
+    s.gaugeX = scene.statics.slopes.empty() ? h.x.front() : scene.statics.slopes.front().origin.x() + shift.x();
   const std::size_t ig = nearest(h.x, s.gaugeX);
   s.gaugeX = h.x[ig];
   std::vector<double> eta(times.size());
@@ -210,7 +220,7 @@ StormSummary summariseStorm(const fs::path& stormPath, const io::Scene& scene, c
                       "voxel in the armour layer",
                       o.voxel[0], o.voxel[1], h.x[ix], h.z[iz], stormPath.string());
   } else {
-    const Eigen::Vector3d& mean = unitsMean;
+    const Eigen::Vector3d mean = unitsMean + shift;
     ix = nearest(h.x, mean.x());
     double etaMin = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < times.size(); ++k) etaMin = std::min(etaMin, reader.eta(k)[ix]);
@@ -703,10 +713,15 @@ void addReportCommands(CLI::App& app, GlobalOptions& /*global*/) {
                   "hydro bodies)");
   cmd->add_option("--axis", o->axis, "unit axis for P2")->capture_default_str();
   cmd->add_option("--voxel", o->voxel,
-                  "X Z: the storm voxel whose pressure history to show (m; default: a submerged "
+                  "X Z: the storm voxel whose pressure history to show, in the storm file's coordinates (m; default: a submerged "
                   "voxel with data near the units)")
       ->expected(2);
-  cmd->add_option("--gauge", o->gaugeX, "x of the eta gauge for Hs, Tm, Tp (m; default: the slope's toe)");
+  cmd->add_option("--gauge", o->gaugeX,
+                  "x of the eta gauge for Hs, Tm, Tp, in the storm file's coordinates (m; default: the slope's toe)");
+  cmd->add_option("--storm-offset", o->stormOffset,
+                  "X Z: the storm file's (x, z) of the scene's origin (m; default: the scene's hydro.storm.offset, "
+                  "as given to armour storm with --set)")
+      ->expected(2);
   cmd->add_option("--storm-window", o->stormWindow, "storm records in storm.csv: run (the replayed ones) or all")
       ->capture_default_str();
   cmd->add_option("--hs", o->hs, "Hs for the design formulas instead of the gauge's (m)");

@@ -45,6 +45,10 @@ struct AddedMassSettings {
 struct StormLoadSettings {
   std::string file;                 ///< storm file; relative paths are relative to the scene file
   double timeOffset = 0.0;          ///< storm time at simulation time 0 (unit: s)
+  /// Where the scene's origin lies in the storm file's (x, z): storm x = scene x + offsetX, storm
+  /// z = scene z + offsetZ. A tank has its own origin (its inlet, its floor); a placed scene its
+  /// own (the foot of the face): this puts one on the other without placing again (unit: m).
+  double offsetX = 0.0, offsetZ = 0.0;
   double updateInterval = 0.1;      ///< loads recomputed every this much simulated time (unit: s); seed 000: 0.1
   /// The loads rise from zero over the first rampTime of simulated time by the half cosine
   /// r(t) = (1 - cos(pi t / rampTime)) / 2, so that water put on a pack placed dry does not hit it

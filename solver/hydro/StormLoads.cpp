@@ -103,6 +103,7 @@ void StormLoads::initialise(const simulation::World& world) {
   // Bilinear alpha reaches zero one voxel above the last wet centre; a second voxel covers a
   // free surface that is steep or overturning within a column.
   airMargin_ = 2.0 * h.dz();
+  offset_ = Vec3(settings_.offsetX, 0.0, settings_.offsetZ);
   syncBodies(world);
 
   const auto log = core::logger("hydro");
@@ -114,12 +115,16 @@ void StormLoads::initialise(const simulation::World& world) {
   }
   const auto& bodies = world.bodies();
   std::size_t outsideGrid = 0, outsideTrunk = 0, loadedCount = 0;
+  Eigen::Vector2d spanMin(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  Eigen::Vector2d spanMax = -spanMin;
   for (BodyId b = 0; b < loaded_.size(); ++b) {
     if (!loaded_[b]) {
       continue;
     }
     ++loadedCount;
-    const Vec3& x = bodies.position(b);
+    const Vec3 x = bodies.position(b) + offset_;
+    spanMin = spanMin.cwiseMin(Eigen::Vector2d(x.x(), x.z()));
+    spanMax = spanMax.cwiseMax(Eigen::Vector2d(x.x(), x.z()));
     if (x.x() < gridMin_[0] || x.x() > gridMax_[0] || x.z() < gridMin_[1] || x.z() > gridMax_[1]) {
       ++outsideGrid;
     }
@@ -131,9 +136,12 @@ void StormLoads::initialise(const simulation::World& world) {
     log->warn("hydro: no body takes storm loads (bodies filter '{}': fixed bodies never do)", bodies_);
   }
   if (outsideGrid > 0) {
-    log->warn("{} of {} loaded bodies have their centroid outside the storm grid of '{}' (x {} .. {} m, z {} .. {} m): "
-              "outside it they get no hydrodynamic load; check the scene's position against the storm file",
-              outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1]);
+    log->warn("{} of {} loaded bodies have their centroid outside the storm grid of '{}' (x {} .. {} m, z {} .. {} m; "
+              "the loaded centroids span x {:.4g} .. {:.4g} m, z {:.4g} .. {:.4g} m in the file's coordinates, "
+              "hydro.storm.offset = [{}, {}] m): outside it they get no hydrodynamic load; if the scene and the "
+              "tank have different origins, set hydro.storm.offset to the file's (x, z) of the scene's origin",
+              outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1], spanMin.x(),
+              spanMax.x(), spanMin.y(), spanMax.y(), settings_.offsetX, settings_.offsetZ);
   }
   if (h.uniformAlongY) {
     log->info("storm file '{}' holds at every y (uniform_along_y = 1): units at any y take loads (y {} .. {} m is "
@@ -314,7 +322,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   }
   const ShapeData& shape = *shapes_[world.bodyShape(b)];
   const double s = world.bodyScale(b);
-  const Vec3 x = bodies.position(b);
+  const Vec3 x = bodies.position(b) + offset_; // in the storm file's coordinates
   const double r = s * shape.radius;
   const storm::StormHeader& h = reader_->header();
   // Cheap rejections before any element is touched: the body's box against the grid and, for a

@@ -9,7 +9,7 @@
 ///    (SurfaceElements.hpp), buoyancy included:  F_p = -sum_e p_e a_e n_e,
 ///    M_p = sum_e (r_e - x_b) x (-p_e a_e n_e), with p_e sampled from the storm file (StormSampler)
 ///    at the element centroid's (x, z) and storm time t + timeOffset, plus the Weibull variability
-///    (Variability.hpp); p_e = 0 (atmospheric) where the water fraction is below wetAlpha, the sample
+///    (Variability.hpp) (in the storm file's coordinates: scene x and z plus the settings' offset); p_e = 0 (atmospheric) where the water fraction is below wetAlpha, the sample
 ///    is outside the grid or has no data, or the element lies outside the trunk's y range (not for a
 ///    file uniform along y, StormHeader::uniformAlongY: a 2D tank holds at every y);
 ///  - Morison drag (seed 000 eq. 2) at the centre of mass: F_D = 1/2 rho C_d A (u - v)|u - v|, u the
@@ -154,6 +154,7 @@ private:
   double trunkMin_ = 0.0, trunkMax_ = 0.0; ///< y range of the trunk; unbounded if trunkLength <= 0 (m)
   /// Loads only within [trunkMin_, trunkMax_]; false for a file uniform along y (unit: -).
   bool trunkBounded_ = true;
+  Vec3 offset_ = Vec3::Zero();           ///< scene -> storm coordinates: (offsetX, 0, offsetZ) (m)
   double airMargin_ = 0.0;               ///< a body this far above the highest free surface is dry (m)
 
   // Per body.

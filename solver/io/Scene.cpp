@@ -237,6 +237,7 @@ std::string describeScene(const Scene& s) {
       const hydro::StormLoadSettings& st = h.storm;
       line("  model = storm");
       line(fmt::format("  file = {}", st.file));
+      line(fmt::format("  offset = [{}, {}] m (the file's x, z of the scene's origin)", st.offsetX, st.offsetZ));
       line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}, ramp_time = {} s",
                        st.timeOffset, st.updateInterval,
                        st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate", st.rampTime));

@@ -646,9 +646,9 @@ void readRunSettings(const Block& top, Scene& scene) {
 
 const KeyList kHydroKeys{"model", "bodies", "storm", "oscillating", "shallow_wave"};
 const KeyList kHydroModels{"storm", "oscillating", "shallow_wave"};
-const KeyList kStormLoadKeys{"file",         "time_offset", "update_interval", "ramp_time", "between_updates",
-                             "wet_alpha",    "element_size", "pressure",       "variability", "drag",
-                             "added_mass"};
+const KeyList kStormLoadKeys{"file",         "time_offset", "offset",   "update_interval", "ramp_time",
+                             "between_updates", "wet_alpha", "element_size", "pressure", "variability",
+                             "drag",         "added_mass"};
 const KeyList kVariabilityKeys{"enabled", "seed", "patches_per_axis"};
 const KeyList kDragKeys{"enabled", "coefficient"};
 const KeyList kOscillatingKeys{"amplitude", "period", "wave_number", "z_min", "z_swl", "z_max", "waves"};
@@ -678,6 +678,11 @@ void readHydro(const Block& top, Scene& scene) {
                   .lexically_normal()
                   .string();
     st.timeOffset = s.number("time_offset", {"s", kNonNegative, "0: storm time at simulation time 0"}, st.timeOffset);
+    const auto offset = s.numbers("offset", 2, {"m", kAnyNumber, "offset: [104, 3], the storm file's (x, z) of the "
+                                                              "scene's origin"},
+                                  std::vector<double>{st.offsetX, st.offsetZ});
+    st.offsetX = offset[0];
+    st.offsetZ = offset[1];
     st.updateInterval = s.number("update_interval", {"s", kPositive, "0.1 (seed 000)"}, st.updateInterval);
     st.rampTime = s.number("ramp_time", {"s", kNonNegative, "2 (the loads rise from zero over the first 2 s)"},
                            st.rampTime);

@@ -223,6 +223,48 @@ TEST_F(HydroTest, ElementsOutsideTheTrunkCarryNoLoad) {
   EXPECT_NEAR(l.force[b].z(), 0.5 * kRho * kG, 0.01 * 0.5 * kRho * kG);
 }
 
+TEST_F(HydroTest, OffsetPutsTheSceneIntoTheFilesCoordinates) {
+  // A storm file in a tank's coordinates (still water with its surface at z = 0 over x in
+  // [-10, 10] m, a linear-in-x pressure added so that the position along x matters) and two
+  // scenes: one placed in the tank's coordinates, one whose origin lies at the tank's
+  // (x, z) = (-104, -3). With hydro.storm.offset = [-104, -3] the second unit, at scene (104 + x,
+  // z + 3), takes the first one's load exactly (same samples, same arithmetic: 1e-12); without
+  // it, it lies outside the grid and takes none (skipped).
+  const std::string path = file("tank.nc");
+  writeStorm(path, gridHeader(-10.0, 10.0, -12.0, 2.0, 0.5, 0.0), {0.0, 10.0},
+             [](double, double x, double z) {
+               Flow f = hydrostatic(0.0)(0.0, x, z);
+               if (z < 0.0) f.p += 300.0 * x;
+               return f;
+             },
+             flat());
+  const Vec3 inTank(2.3, 0.4, -4.1);
+  Scene tank;
+  const BodyId a = tank.add("coreloc", inTank, someOrientation(1));
+  StormLoads tankStage(tank.world, settingsFor(path), "all", path);
+  const Loads expected = applyAt(tankStage, tank.world, 0.0);
+  ASSERT_GT(expected.force[a].z(), 0.5 * kRho * kG);
+  ASSERT_GT(std::abs(expected.force[a].x()), 100.0);
+
+  const Vec3 inScene = inTank + Vec3(104.0, 0.0, 3.0);
+  Scene scene;
+  const BodyId b = scene.add("coreloc", inScene, someOrientation(1));
+  hydro::StormLoadSettings shifted = settingsFor(path);
+  shifted.offsetX = -104.0;
+  shifted.offsetZ = -3.0;
+  StormLoads stage(scene.world, shifted, "all", path);
+  const Loads l = applyAt(stage, scene.world, 0.0);
+  EXPECT_NEAR((l.force[b] - expected.force[a]).norm(), 0.0, 1e-12 * expected.force[a].norm());
+  EXPECT_NEAR((l.torque[b] - expected.torque[a]).norm(), 0.0, 1e-12 * expected.force[a].norm());
+  EXPECT_EQ(stage.evaluatedElements(b), tankStage.evaluatedElements(a));
+
+  StormLoads unshifted(scene.world, settingsFor(path), "all", path);
+  const Loads none = applyAt(unshifted, scene.world, 0.0);
+  EXPECT_EQ(none.force[b], Vec3::Zero());
+  EXPECT_EQ(unshifted.evaluatedElements(b), 0u);
+  EXPECT_EQ(unshifted.counters().skippedBodies, 1u);
+}
+
 TEST_F(HydroTest, FileUniformAlongYLoadsUnitsBeyondItsTrunkRange) {
   // The same still water twice, averaged over y in [-5, 5] m: bounded (a 3D tank's section) and
   // uniform along y (a 2D tank, which holds at every y). A unit at y = 20 m, outside the range,

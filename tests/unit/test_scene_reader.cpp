@@ -755,6 +755,7 @@ TEST(SceneHydro, StormBlockWithDefaults) {
   EXPECT_CONTAINS(text, "update_interval = 0.1 s");
   EXPECT_EQ(st.rampTime, 0.0) << "no ramp unless asked";
   EXPECT_CONTAINS(text, "ramp_time = 0 s");
+  EXPECT_CONTAINS(text, "offset = [0, 0] m");
 }
 
 TEST(SceneHydro, EverySettingIsRead) {
@@ -763,6 +764,7 @@ TEST(SceneHydro, EverySettingIsRead) {
   storm:
     file: s.nc
     time_offset: 120
+    offset: [104, -3.5]
     update_interval: 0.05
     ramp_time: 1.5
     between_updates: interpolate
@@ -776,6 +778,8 @@ TEST(SceneHydro, EverySettingIsRead) {
   const auto& st = s.hydro.storm;
   EXPECT_EQ(s.hydro.bodies, "unit_");
   EXPECT_EQ(st.timeOffset, 120.0);
+  EXPECT_EQ(st.offsetX, 104.0);
+  EXPECT_EQ(st.offsetZ, -3.5);
   EXPECT_EQ(st.updateInterval, 0.05);
   EXPECT_EQ(st.rampTime, 1.5);
   EXPECT_EQ(st.betweenUpdates, armour::hydro::BetweenUpdates::Interpolate);
@@ -818,6 +822,7 @@ TEST(SceneHydro, ErrorsNameTheKeyAndTheFix) {
                   "hydro.storm.update_interval = 0: must be > 0");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, ramp_time: -1}\n"),
                   "hydro.storm.ramp_time = -1: must be >= 0");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, offset: [104]}\n"), "hydro.storm.offset");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, between_updates: smooth}\n"),
                   "expected one of hold, interpolate");
   EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  model: wind\n"), "expected one of storm, oscillating, shallow_wave");
