@@ -212,6 +212,56 @@ std::vector<std::string> sceneSets(const RunRequest& o) {
   return sets;
 }
 
+/// Start a new run from the scene's initial_state (the state `armour place` left the pack in):
+/// the bodies' positions, orientations and velocities and the contacts with their friction
+/// springs, at time 0, every body awake (a pack at rest falls asleep again within the sleep time),
+/// the load stages fresh. Refused, naming the body, if the state does not belong to the scene:
+/// another body order or count, or a position moved by more than a micrometre (an edited scene).
+void startFromInitialState(const io::Scene& scene, simulation::World& world) {
+  const std::string file = scene.initialState.string();
+  simulation::Checkpoint c = simulation::readCheckpoint(scene.initialState, {"", "", world.bodies().size()});
+  constexpr double kSamePosition = 1e-6; // m: the scene's 17 significant digits reproduce the state's
+  for (simulation::BodyId b = 0; b < world.bodies().size(); ++b) {
+    const std::string& name = world.bodies().info(b).name;
+    if (b < c.bodyNames.size() && c.bodyNames[b] != name)
+      core::failInput(file, "body {} is '{}' in the state but '{}' in the scene {}: the state is not this scene's; "
+                            "place again, or remove initial_state from the scene to start from its positions",
+                      b, c.bodyNames[b], name, scene.sourceName);
+    const double moved = (c.state.bodies[b].position - world.bodies().position(b)).norm();
+    if (!(moved <= kSamePosition))
+      core::failInput(file, "body '{}' lies {:.3g} m from where the state has it (more than {} m): the scene {} was "
+                            "edited after the placement; place again, or remove initial_state from the scene to "
+                            "start from its positions",
+                      name, moved, kSamePosition, scene.sourceName);
+  }
+  simulation::WorldState s = std::move(c.state);
+  s.time = 0.0;
+  s.steps = 0;
+  s.forcesReady = false;
+  s.energyStarted = false;
+  s.energyMinimum = s.externalWork = s.energyPeak = 0.0;
+  for (auto& body : s.bodies) {
+    if (body.motion == dynamics::MotionType::Sleeping) body.motion = dynamics::MotionType::Dynamic;
+    body.restTime = 0.0;
+  }
+  s.loadStages = world.captureState().loadStages;
+  // The contacts' records (sample keys, friction springs) belong to the contact model they were
+  // made with: under other settings (a fidelity study's) the run starts from the bodies' state
+  // alone and builds its own contacts.
+  const std::string contactModel = io::describeContactModel(scene.contact);
+  if (c.applicationState != contactModel) {
+    core::logger("run")->warn("{} was saved with '{}', this run uses '{}': its contacts (and their friction springs) "
+                              "are not carried over, only the bodies' state",
+                              file, c.applicationState, contactModel);
+    s.contacts.clear();
+  }
+  try {
+    world.restoreState(s);
+  } catch (const core::InputError& e) {
+    core::failInput(file, "{}", e.what());
+  }
+}
+
 } // namespace
 
 void runScene(const RunRequest& o) {
@@ -274,6 +324,12 @@ void runScene(const RunRequest& o) {
     log->info("{}", hydro);
   }
   log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
+  if (!restart && !scene.initialState.empty()) {
+    startFromInitialState(scene, world);
+    log->info("started from the placed state {} (positions, contacts and their friction springs as the placement "
+              "left them)",
+              scene.initialState.string());
+  }
   if (restart) {
     try {
       world.restoreState(restart->state);

@@ -126,6 +126,12 @@ std::string heightField(const HeightField& f) {
 
 } // namespace
 
+std::string describeContactModel(const ContactSettings& c) {
+  return fmt::format("contact model {}, sample_spacing {} Dn, level_set_cells_per_dn {}, fdem elements_per_unit {}",
+                     c.model == ContactModel::Fdem ? "fdem" : "levelset", c.sampleSpacing, c.levelSetCellsPerDn,
+                     c.fdemElementsPerUnit);
+}
+
 std::string describeScene(const Scene& s) {
   const auto materialName = [&](std::size_t i) { return i < s.materials.size() ? s.materials[i].name : "?"; };
   std::string out;
@@ -143,6 +149,9 @@ std::string describeScene(const Scene& s) {
   else
     line(fmt::format("  time_step = {} s (fixed; time_step_safety = {} unused)", s.timeStep.value, s.timeStep.safety));
   line(fmt::format("  seed = {}", s.seed));
+  if (!s.initialState.empty())
+    line(fmt::format("  initial_state = {} (the placement's end state: positions, contacts, friction springs)",
+                     s.initialState.string()));
 
   line("contact:");
   line(fmt::format("  sample_spacing = {} Dn", s.contact.sampleSpacing));

@@ -242,6 +242,10 @@ struct Scene {
   std::string sourceName;              ///< the file as named by the user (for messages)
   std::filesystem::path baseDir;       ///< folder relative paths are resolved against
   std::string description;             ///< free text from the file
+  /// `initial_state:` the state `armour place` left the pack in (its contacts' friction springs
+  /// included), which `armour run`/`storm` start from instead of the bodies' positions alone;
+  /// absolute, or empty for none.
+  std::filesystem::path initialState;
   Vec3 gravity{0.0, 0.0, -9.81};       ///< (unit: m/s^2)
   double duration = 0.0;               ///< simulated time (unit: s)
   TimeStepSettings timeStep;
@@ -272,5 +276,9 @@ Quat quaternionFromTaitBryan(double phi, double theta, double psi);
 
 /// Every resolved setting with its unit, defaults included, one per line (for the run log).
 std::string describeScene(const Scene& scene);
+
+/// What the contacts' state depends on (model, sample spacing, level-set and fdem resolution), one
+/// line: a state saved under other settings does not fit the contacts of these.
+std::string describeContactModel(const ContactSettings& contact);
 
 } // namespace armour::io

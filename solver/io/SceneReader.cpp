@@ -576,7 +576,7 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 
 const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
-                       "placement"};
+                       "placement",   "initial_state"};
 const KeyList kContactKeys{"model", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem"};
 const KeyList kContactModels{"levelset", "fdem"};
 const KeyList kFdemKeys{"elements_per_unit"};
@@ -587,6 +587,11 @@ const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wa
 void readRunSettings(const Block& top, Scene& scene) {
   const Context& ctx = top.context();
   scene.description = top.text("description", "text", std::string());
+  if (top.has("initial_state"))
+    scene.initialState = std::filesystem::absolute(
+                             ctx.baseDir / top.text("initial_state", "the placed state file (.nc) armour place wrote "
+                                                                    "beside the placed scene"))
+                             .lexically_normal();
   scene.gravity = top.vec3("gravity", {"m/s^2", kAnyNumber, "gravity: [0, 0, -9.81]"}, scene.gravity);
   scene.duration = top.number("duration", {"s", kPositive, "duration: 10, simulated seconds"});
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "placement/PlacedScene.hpp"
 
+#include "simulation/CheckpointFile.hpp"
+
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 
@@ -39,9 +41,11 @@ std::string jsonList(const std::vector<std::string>& names) {
 
 } // namespace
 
-std::string placedSceneYaml(const std::string& inputYaml, const PlacementResult& result) {
+std::string placedSceneYaml(const std::string& inputYaml, const PlacementResult& result,
+                            const std::string& initialState) {
   YAML::Node root = YAML::Load(inputYaml);
   root.remove("placement");
+  if (!initialState.empty()) root["initial_state"] = initialState;
   // The placed scene's own run output goes beside it under its own name.
   if (root["output"] && root["output"].IsMap()) root["output"].remove("folder");
   const io::Scene& scene = result.scene;
@@ -143,7 +147,17 @@ void writePlacementOutputs(const std::string& inputYaml, const PlacementResult& 
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) core::failInput(folder.string(), "cannot create the output folder: {}", ec.message());
-  const std::string yaml = placedSceneYaml(inputYaml, result);
+  // The state first: the scene that names it is written after it.
+  const std::filesystem::path statePath = scenePath.parent_path() / (scenePath.stem().string() + "-state.nc");
+  simulation::Checkpoint state;
+  const simulation::World& world = *result.built.world;
+  state.state = world.captureState();
+  state.state.time = 0.0;
+  state.state.steps = 0;
+  for (simulation::BodyId b = 0; b < world.bodies().size(); ++b) state.bodyNames.push_back(world.bodies().info(b).name);
+  state.applicationState = io::describeContactModel(result.scene.contact);
+  simulation::writeCheckpoint(statePath, state);
+  const std::string yaml = placedSceneYaml(inputYaml, result, statePath.filename().string());
   core::writeFileAtomically(scenePath, [&](std::ostream& o) { o << yaml; });
   core::writeFileAtomically(folder / "units.csv", [&](std::ostream& o) { o << unitsCsv(result); });
   core::writeFileAtomically(folder / "placement.json", [&](std::ostream& o) { o << summaryJson(result); });

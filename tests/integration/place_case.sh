@@ -3,7 +3,11 @@
 # The smoke variant of a shipped placement case (cases/placement/*-smoke.yaml): `armour place`
 # places every unit of its grid, no unit is left moving or moved more than 1 Dn, the placed scene passes `armour check`
 # (nothing starts overlapping deeper than the guard rail) and placement.json holds the expected
-# unit and rock counts.
+# unit and rock counts. The placed scene names its state (<name>-placed-state.nc, initial_state:);
+# run from it for 1 s the pack stays where the placement left it (no unit moves 1 mm): the
+# contacts keep their friction springs. The same scene without its state (positions only) is run
+# too and its largest move printed, for comparison; a scene edited after the placement is refused
+# (exit 2, the body named).
 # Arguments: the armour binary, the case file, a work folder, expected units, expected rocks.
 set -euo pipefail
 armour="$1"
@@ -25,4 +29,37 @@ assert s["still_moving"] == [], s
 # The pack holds its grid: no unit ends more than 1 Dn from where it was released.
 assert s["moved_more_than_1dn"] == [], s["moved_more_than_1dn"]
 PY
+placed="$out/$name-placed.yaml"
+[[ -f "$out/$name-placed-state.nc" ]] || fail "no placed state $name-placed-state.nc beside the placed scene"
+grep -q "^initial_state: $name-placed-state.nc" "$placed" || fail "the placed scene does not name its state"
+printf 'output: {series_interval: 0.1, vtk_interval: 10}\n' >> "$placed"
+"$armour" --log-level warn run "$placed" --duration 1 --threads 1 -o "$out/from-state" > "$out/from-state.txt" \
+  || fail "run from the placed state failed: $(cat "$out/from-state.txt")"
+grep -q "started from the placed state" "$out/from-state/run.log" || fail "the run did not start from the placed state"
+grep -v "^initial_state:" "$placed" > "$out/$name-positions.yaml"
+"$armour" --log-level warn run "$out/$name-positions.yaml" --duration 1 --threads 1 -o "$out/from-positions" \
+  > "$out/from-positions.txt" || fail "run from the positions failed: $(cat "$out/from-positions.txt")"
+/usr/bin/python3 - "$out/from-state/bodies.nc" "$out/from-positions/bodies.nc" <<'PY' || fail "the pack moved when run from its placed state"
+import sys, netCDF4, numpy
+def largest(path):
+    with netCDF4.Dataset(path) as ds:
+        names = [n.strip() for n in netCDF4.chartostring(ds["body_name"][:])]
+        x = numpy.asarray(ds["position"][:])
+    units = [i for i, n in enumerate(names) if n.startswith("unit_")]
+    return max(numpy.linalg.norm(x[-1, i] - x[0, i]) for i in units)
+state, positions = largest(sys.argv[1]), largest(sys.argv[2])
+print(f"largest unit move in 1 s: {state * 1e3:.4f} mm from the placed state, {positions * 1e3:.4f} mm from the positions alone")
+assert state < 1e-3, state
+PY
+/usr/bin/python3 - "$placed" "$out/$name-edited.yaml" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+# Move the first unit by 1 cm along x.
+m = re.search(r"(- name: unit_\w+\n(?:  .*\n)*?    position: \[)([^,]+)", text)
+text = text[:m.start(2)] + repr(float(m.group(2)) + 0.01) + text[m.end(2):]
+open(sys.argv[2], "w").write(text)
+PY
+set +e; msg=$("$armour" --log-level off run "$out/$name-edited.yaml" --duration 0.01 --threads 1 -o "$out/edited" 2>&1); code=$?; set -e
+[[ $code -eq 2 ]] || fail "a scene edited after the placement should be refused (exit 2), got $code: $msg"
+grep -q "was edited after the placement" <<< "$msg" || fail "unclear refusal of the edited scene: $msg"
 echo "$name: OK"; cat "$out/$name-out/placement.txt"
