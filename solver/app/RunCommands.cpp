@@ -208,7 +208,8 @@ std::vector<std::string> sceneSets(const RunRequest& o) {
   std::vector<std::string> sets = o.sets;
   const bool hydroSet =
       std::any_of(sets.begin(), sets.end(), [](const std::string& s) { return s.rfind("hydro.storm.", 0) == 0; });
-  if (!o.stormFile.empty() && hydroSet) sets.insert(sets.begin(), "hydro.storm.file=" + fs::absolute(o.stormFile).string());
+  if (!o.stormFile.empty() && hydroSet)
+    sets.insert(sets.begin(), "hydro.storm.file=" + fs::absolute(o.stormFile).string());
   return sets;
 }
 
@@ -217,7 +218,8 @@ std::vector<std::string> sceneSets(const RunRequest& o) {
 /// springs, at time 0, every body awake (a pack at rest falls asleep again within the sleep time),
 /// the load stages fresh. Refused, naming the body, if the state does not belong to the scene:
 /// another body order or count, or a position moved by more than a micrometre (an edited scene).
-void startFromInitialState(const io::Scene& scene, simulation::World& world) {
+/// Returns whether the contacts were carried over (they are not under other contact settings).
+bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   const std::string file = scene.initialState.string();
   simulation::Checkpoint c = simulation::readCheckpoint(scene.initialState, {"", "", world.bodies().size()});
   constexpr double kSamePosition = 1e-6; // m: the scene's 17 significant digits reproduce the state's
@@ -260,6 +262,7 @@ void startFromInitialState(const io::Scene& scene, simulation::World& world) {
   } catch (const core::InputError& e) {
     core::failInput(file, "{}", e.what());
   }
+  return c.applicationState == contactModel;
 }
 
 } // namespace
@@ -325,10 +328,9 @@ void runScene(const RunRequest& o) {
   }
   log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
   if (!restart && !scene.initialState.empty()) {
-    startFromInitialState(scene, world);
-    log->info("started from the placed state {} (positions, contacts and their friction springs as the placement "
-              "left them)",
-              scene.initialState.string());
+    const bool contacts = startFromInitialState(scene, world);
+    log->info("started from the placed state {} ({} as the placement left them)", scene.initialState.string(),
+              contacts ? "positions, contacts and their friction springs" : "positions and velocities");
   }
   if (restart) {
     try {

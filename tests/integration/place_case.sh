@@ -6,8 +6,8 @@
 # unit and rock counts. The placed scene names its state (<name>-placed-state.nc, initial_state:);
 # run from it for 1 s the pack stays where the placement left it (no unit moves 1 mm): the
 # contacts keep their friction springs. The same scene without its state (positions only) is run
-# too and its largest move printed, for comparison; a scene edited after the placement is refused
-# (exit 2, the body named).
+# too and its largest move printed, for comparison; under other contact settings only the bodies'
+# state is used; a scene edited after the placement is refused (exit 2, the body named).
 # Arguments: the armour binary, the case file, a work folder, expected units, expected rocks.
 set -euo pipefail
 armour="$1"
@@ -35,7 +35,13 @@ grep -q "^initial_state: $name-placed-state.nc" "$placed" || fail "the placed sc
 printf 'output: {series_interval: 0.1, vtk_interval: 10}\n' >> "$placed"
 "$armour" --log-level warn run "$placed" --duration 1 --threads 1 -o "$out/from-state" > "$out/from-state.txt" \
   || fail "run from the placed state failed: $(cat "$out/from-state.txt")"
-grep -q "started from the placed state" "$out/from-state/run.log" || fail "the run did not start from the placed state"
+grep -q "started from the placed state .* (positions, contacts and their friction springs" "$out/from-state/run.log" \
+  || fail "the run did not start from the placed state"
+# Under other contact settings the state's contacts do not fit: the bodies' state only, with a warning.
+"$armour" --log-level warn run "$placed" --duration 0.01 --threads 1 -o "$out/other-contacts" \
+  --set contact.sample_spacing=0.08 > "$out/other-contacts.txt" 2>&1 || fail "run under other contact settings failed"
+grep -q "positions and velocities as the placement left them" "$out/other-contacts/run.log" \
+  || fail "the state's contacts were carried over to other contact settings"
 grep -v "^initial_state:" "$placed" > "$out/$name-positions.yaml"
 "$armour" --log-level warn run "$out/$name-positions.yaml" --duration 1 --threads 1 -o "$out/from-positions" \
   > "$out/from-positions.txt" || fail "run from the positions failed: $(cat "$out/from-positions.txt")"
