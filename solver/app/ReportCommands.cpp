@@ -713,8 +713,8 @@ void addReportCommands(CLI::App& app, GlobalOptions& /*global*/) {
                   "hydro bodies)");
   cmd->add_option("--axis", o->axis, "unit axis for P2")->capture_default_str();
   cmd->add_option("--voxel", o->voxel,
-                  "X Z: the storm voxel whose pressure history to show, in the storm file's coordinates (m; default: a submerged "
-                  "voxel with data near the units)")
+                  "X Z: the storm voxel whose pressure history to show, in the storm file's coordinates (m; "
+                  "default: a submerged voxel with data near the units)")
       ->expected(2);
   cmd->add_option("--gauge", o->gaugeX,
                   "x of the eta gauge for Hs, Tm, Tp, in the storm file's coordinates (m; default: the slope's toe)");

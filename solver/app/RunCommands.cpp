@@ -242,10 +242,6 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   s.forcesReady = false;
   s.energyStarted = false;
   s.energyMinimum = s.externalWork = s.energyPeak = 0.0;
-  for (auto& body : s.bodies) {
-    if (body.motion == dynamics::MotionType::Sleeping) body.motion = dynamics::MotionType::Dynamic;
-    body.restTime = 0.0;
-  }
   s.loadStages = world.captureState().loadStages;
   // The contacts' records (sample keys, friction springs) belong to the contact model they were
   // made with: under other settings (a fidelity study's) the run starts from the bodies' state
@@ -262,6 +258,7 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   } catch (const core::InputError& e) {
     core::failInput(file, "{}", e.what());
   }
+  world.wakeAll(); // every body awake, its rest clock at zero
   return c.applicationState == contactModel;
 }
 

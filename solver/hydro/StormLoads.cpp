@@ -140,8 +140,8 @@ void StormLoads::initialise(const simulation::World& world) {
               "the loaded centroids span x {:.4g} .. {:.4g} m, z {:.4g} .. {:.4g} m in the file's coordinates, "
               "hydro.storm.offset = [{}, {}] m): outside it they get no hydrodynamic load; if the scene and the "
               "tank have different origins, set hydro.storm.offset to the file's (x, z) of the scene's origin",
-              outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1], spanMin.x(),
-              spanMax.x(), spanMin.y(), spanMax.y(), settings_.offsetX, settings_.offsetZ);
+              outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1],
+              spanMin.x(), spanMax.x(), spanMin.y(), spanMax.y(), settings_.offsetX, settings_.offsetZ);
   }
   if (h.uniformAlongY) {
     log->info("storm file '{}' holds at every y (uniform_along_y = 1): units at any y take loads (y {} .. {} m is "

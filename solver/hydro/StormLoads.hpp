@@ -8,9 +8,10 @@
 ///  - form force and moment by pressure integration over the unit's surface elements
 ///    (SurfaceElements.hpp), buoyancy included:  F_p = -sum_e p_e a_e n_e,
 ///    M_p = sum_e (r_e - x_b) x (-p_e a_e n_e), with p_e sampled from the storm file (StormSampler)
-///    at the element centroid's (x, z) and storm time t + timeOffset, plus the Weibull variability
-///    (Variability.hpp) (in the storm file's coordinates: scene x and z plus the settings' offset); p_e = 0 (atmospheric) where the water fraction is below wetAlpha, the sample
-///    is outside the grid or has no data, or the element lies outside the trunk's y range (not for a
+///    at the element centroid's (x, z) in the file's coordinates (the scene's plus offsetX, offsetZ)
+///    and storm time t + timeOffset, plus the Weibull variability (Variability.hpp); p_e = 0
+///    (atmospheric) where the water fraction is below wetAlpha, the sample is outside the grid or
+///    has no data, or the element lies outside the trunk's y range (not for a
 ///    file uniform along y, StormHeader::uniformAlongY: a 2D tank holds at every y);
 ///  - Morison drag (seed 000 eq. 2) at the centre of mass: F_D = 1/2 rho C_d A (u - v)|u - v|, u the
 ///    area-weighted mean flow velocity over the wet elements, v the body's current velocity, A the

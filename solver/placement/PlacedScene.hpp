@@ -36,8 +36,8 @@ std::string summaryJson(const PlacementResult& result);
 /// The per-unit table as CSV.
 std::string unitsCsv(const PlacementResult& result);
 
-/// Write the placed scene to `scenePath`, its state beside it, and units.csv, placement.json and placement.txt into
-/// `folder` (created). Throws core::InputError naming the file it could not write.
+/// Write the placed scene to `scenePath`, its state beside it, and units.csv, placement.json and
+/// placement.txt into `folder` (created). Throws core::InputError naming the file it could not write.
 void writePlacementOutputs(const std::string& inputYaml, const PlacementResult& result,
                            const std::filesystem::path& scenePath, const std::filesystem::path& folder);
 

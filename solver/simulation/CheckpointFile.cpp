@@ -450,7 +450,8 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
                                     "the resolved scene that scene_fingerprint hashes (duration and output settings "
                                     "left out)");
     const int application = defineText("application_state", "application_state_length", c.applicationState,
-                                       "the command's own state around the World (armour place: placement progress)");
+                                       "the command's own state around the World (armour place: placement progress; "
+                                       "a placed state: the contact model its contacts belong to)");
     w.check(nc_enddef(ncid), "finish the header");
 
     const auto put = [&](int var, const auto& values) {
