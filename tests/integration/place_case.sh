@@ -7,7 +7,8 @@
 # run from it for 1 s the pack stays where the placement left it (no unit moves 1 mm): the
 # contacts keep their friction springs. The same scene without its state (positions only) is run
 # too and its largest move printed, for comparison; under other contact settings only the bodies'
-# state is used; a scene edited after the placement is refused (exit 2, the body named).
+# state is used; a scene edited after the placement is refused (exit 2, the body named), and so is
+# a missing state file (named).
 # Arguments: the armour binary, the case file, a work folder, expected units, expected rocks.
 set -euo pipefail
 armour="$1"
@@ -68,4 +69,9 @@ PY
 set +e; msg=$("$armour" --log-level off run "$out/$name-edited.yaml" --duration 0.01 --threads 1 -o "$out/edited" 2>&1); code=$?; set -e
 [[ $code -eq 2 ]] || fail "a scene edited after the placement should be refused (exit 2), got $code: $msg"
 grep -q "was edited after the placement" <<< "$msg" || fail "unclear refusal of the edited scene: $msg"
+sed "s/^initial_state: .*/initial_state: missing-state.nc/" "$placed" > "$out/$name-missing.yaml"
+set +e; msg=$("$armour" --log-level off run "$out/$name-missing.yaml" --duration 0.01 --threads 1 -o "$out/missing" 2>&1)
+code=$?; set -e
+[[ $code -eq 2 ]] || fail "a missing placed state should be refused (exit 2), got $code: $msg"
+grep -q "missing-state.nc" <<< "$msg" || fail "the missing state file is not named: $msg"
 echo "$name: OK"; cat "$out/$name-out/placement.txt"
