@@ -221,6 +221,10 @@ std::vector<std::string> sceneSets(const RunRequest& o) {
 /// Returns whether the contacts were carried over (they are not under other contact settings).
 bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   const std::string file = scene.initialState.string();
+  if (std::error_code ec; !fs::is_regular_file(scene.initialState, ec))
+    core::failInput(file, "no placed state here (initial_state of {}): `armour place` writes it beside the placed "
+                          "scene; place again, or remove initial_state from the scene to start from its positions",
+                    scene.sourceName);
   simulation::Checkpoint c = simulation::readCheckpoint(scene.initialState, {"", "", world.bodies().size()});
   constexpr double kSamePosition = 1e-6; // m: the scene's 17 significant digits reproduce the state's
   for (simulation::BodyId b = 0; b < world.bodies().size(); ++b) {

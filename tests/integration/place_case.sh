@@ -73,5 +73,5 @@ sed "s/^initial_state: .*/initial_state: missing-state.nc/" "$placed" > "$out/$n
 set +e; msg=$("$armour" --log-level off run "$out/$name-missing.yaml" --duration 0.01 --threads 1 -o "$out/missing" 2>&1)
 code=$?; set -e
 [[ $code -eq 2 ]] || fail "a missing placed state should be refused (exit 2), got $code: $msg"
-grep -q "missing-state.nc" <<< "$msg" || fail "the missing state file is not named: $msg"
+grep -q "missing-state.nc: no placed state here" <<< "$msg" || fail "the missing state file is not named: $msg"
 echo "$name: OK"; cat "$out/$name-out/placement.txt"
