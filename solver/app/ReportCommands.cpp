@@ -82,27 +82,31 @@ std::string csvNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v)
 // bodies.nc
 // ------------------------------------------------------------------------------------------------
 
-/// The scene a run was made from: the argument after `run` on the last line of the history
-/// attribute that has one, looked for as given, relative to the current folder and to the run
-/// folder's parent.
-fs::path sceneFromHistory(const io::BodySeriesReader& series, const fs::path& runDir) {
-  std::istringstream lines(series.history());
-  std::string line, named;
-  while (std::getline(lines, line)) {
-    std::istringstream words(line);
-    std::string w;
-    bool afterRun = false;
-    while (words >> w) {
-      if (afterRun && !w.empty() && w[0] != '-') {
-        named = w;
-        break;
+/// The scene a run was made from: bodies.nc's `scene_file`, else (files of older runs) the
+/// argument after `run` or `storm` on the last line of the history attribute that has one; looked
+/// for as recorded, relative to the current folder and to the run folder's parent (a moved run).
+fs::path sceneFromRun(const io::BodySeriesReader& series, const fs::path& runDir) {
+  std::string named = series.textAttribute("scene_file").value_or("");
+  if (named.empty()) {
+    std::istringstream lines(series.history());
+    std::string line;
+    while (std::getline(lines, line)) {
+      std::istringstream words(line);
+      std::string w;
+      bool afterCommand = false;
+      while (words >> w) {
+        if (afterCommand && !w.empty() && w[0] != '-') {
+          named = w;
+          if (named.size() > 1 && named.front() == '\'' && named.back() == '\'') named = named.substr(1, named.size() - 2);
+          break;
+        }
+        if (w == "run" || w == "storm") afterCommand = true;
       }
-      if (w == "run") afterRun = true;
     }
   }
   if (named.empty())
-    core::failInput(series.path().string(), "its history attribute names no `armour run <scene>`; give the scene "
-                                            "with --scene");
+    core::failInput(series.path().string(), "names no scene (no scene_file attribute, no `armour run <scene>` in "
+                                            "its history); give the scene with --scene");
   for (const fs::path& candidate :
        {fs::path(named), runDir.parent_path() / fs::path(named).filename(), runDir.parent_path() / named})
     if (fs::is_regular_file(candidate)) return candidate;
@@ -110,6 +114,29 @@ fs::path sceneFromHistory(const io::BodySeriesReader& series, const fs::path& ru
                   "the run was made from '{}', which is not found from here; give the scene "
                   "with --scene",
                   named);
+}
+
+/// The scene as the run read it: with the run's --set changes (`scene_sets`) and, for a storm
+/// replay, the storm settings it ran with (`armour storm --storm --time-offset`: storm_file,
+/// storm_time_offset, storm_offset_x/z, storm_ramp_time, hydro_bodies).
+io::Scene sceneOfRun(const fs::path& scenePath, const io::BodySeriesReader& series) {
+  std::vector<std::string> sets;
+  std::istringstream lines(series.textAttribute("scene_sets").value_or(""));
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty()) sets.push_back(line);
+  io::Scene scene = io::readScene(scenePath, sets);
+  if (const auto file = series.textAttribute("storm_file")) {
+    hydro::HydroSettings& h = scene.hydro;
+    h.enabled = true;
+    h.model = hydro::HydroModel::Storm;
+    h.storm.file = *file;
+    h.bodies = series.textAttribute("hydro_bodies").value_or(h.bodies);
+    h.storm.timeOffset = series.numberAttribute("storm_time_offset").value_or(h.storm.timeOffset);
+    h.storm.offsetX = series.numberAttribute("storm_offset_x").value_or(h.storm.offsetX);
+    h.storm.offsetZ = series.numberAttribute("storm_offset_z").value_or(h.storm.offsetZ);
+    h.storm.rampTime = series.numberAttribute("storm_ramp_time").value_or(h.storm.rampTime);
+  }
+  return scene;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -364,8 +391,8 @@ void report(const ReportOptions& o) {
   if (o.stormWindow != "run" && o.stormWindow != "all")
     core::failInput("--storm-window", "'{}': give run or all", o.stormWindow);
   const io::BodySeriesReader series(runDir / "bodies.nc");
-  const fs::path scenePath = o.scene.empty() ? sceneFromHistory(series, runDir) : fs::path(o.scene);
-  const io::Scene scene = io::readScene(scenePath);
+  const fs::path scenePath = o.scene.empty() ? sceneFromRun(series, runDir) : fs::path(o.scene);
+  const io::Scene scene = sceneOfRun(scenePath, series);
 
   // Units: movable bodies with the prefix (default: those the hydro loads act on).
   std::string prefix = o.prefix;
@@ -705,7 +732,9 @@ void addReportCommands(CLI::App& app, GlobalOptions& /*global*/) {
   auto* cmd = app.add_subcommand("report", "damage report of a storm run: displacements, rocking, Nod and S, P2, the "
                                            "storm's Hs and Tp, and the design formulas beside them (docs/report.md)");
   cmd->add_option("run", o->run, "the run's output folder (with bodies.nc)")->required();
-  cmd->add_option("--scene", o->scene, "the run's scene (default: the one bodies.nc's history names)");
+  cmd->add_option("--scene", o->scene,
+                  "the run's scene (default: the one bodies.nc names); read with the run's --set changes and "
+                  "storm settings");
   cmd->add_option("--storm", o->storm, "storm file (default: the scene's hydro storm file)");
   cmd->add_option("--output", o->output, "report folder (default: RUN_DIR/report)");
   cmd->add_option("--units", o->prefix,

@@ -213,6 +213,23 @@ std::vector<std::string> sceneSets(const RunRequest& o) {
   return sets;
 }
 
+/// The command that makes this run, for bodies.nc's history (an ensemble member's run is written
+/// as the `armour storm` it amounts to).
+std::string commandLineOf(const RunRequest& o) {
+  const auto quoted = [](const std::string& s) {
+    return s.find_first_of(" '\"[]{}*?$") == std::string::npos ? s : "'" + s + "'";
+  };
+  std::string line = fmt::format("armour {} {}", o.stormFile.empty() ? "run" : "storm", quoted(o.scene));
+  if (!o.stormFile.empty()) line += " --storm " + quoted(o.stormFile);
+  if (o.timeOffset) line += fmt::format(" --time-offset {}", *o.timeOffset);
+  if (o.variabilitySeed) line += fmt::format(" --variability-seed {}", *o.variabilitySeed);
+  if (o.durationGiven) line += fmt::format(" --duration {}", o.duration);
+  if (!o.output.empty()) line += " -o " + quoted(o.output);
+  for (const std::string& set : o.sets) line += " --set " + quoted(set);
+  if (o.restart) line += " --restart";
+  return line;
+}
+
 /// Start a new run from the scene's initial_state (the state `armour place` left the pack in):
 /// the bodies' positions, orientations and velocities and the contacts with their friction
 /// springs, at time 0, every body awake (a pack at rest falls asleep again within the sleep time),
@@ -353,7 +370,7 @@ void runScene(const RunRequest& o) {
   }
   const std::optional<simulation::OutputSchedule> resume =
       restart ? std::optional<simulation::OutputSchedule>(restart->outputs) : std::nullopt;
-  simulation::RunOutputs outputs(scene, built, "armour run " + o.scene + (o.restart ? " --restart" : ""), resume);
+  simulation::RunOutputs outputs(scene, built, {commandLineOf(o), o.scene, sceneSets(o)}, resume);
   log->info("outputs in {}: bodies.pvd (VTK every {} s), bodies.nc (series every {} s), final_state.csv",
             scene.output.folder.string(), scene.output.vtkInterval, scene.output.seriesInterval);
   const RunCheckpoints checkpoints(fingerprint, identity, world);

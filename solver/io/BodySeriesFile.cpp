@@ -101,6 +101,9 @@ void BodySeriesFile::create(const std::filesystem::path& file, const std::vector
   text(NC_GLOBAL, "title", settings_.title);
   text(NC_GLOBAL, "source", "armour " + core::version());
   text(NC_GLOBAL, "history", history);
+  for (const auto& [name, value] : settings_.textAttributes) text(NC_GLOBAL, name.c_str(), value);
+  for (const auto& [name, value] : settings_.numberAttributes)
+    check(nc_put_att_double(ncid_, NC_GLOBAL, name.c_str(), NC_DOUBLE, 1, &value), "write an attribute");
   text(NC_GLOBAL, "comment",
        "Rigid-body state of every body at each series output time (armour, docs/output-files.md). "
        "Axes: x onshore (wave direction), y along the breakwater trunk, z up. SI units.");

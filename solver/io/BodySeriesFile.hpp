@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace armour::io {
@@ -63,6 +64,10 @@ struct BodySeriesSettings {
   std::filesystem::path path;        ///< the file, e.g. "<output>/bodies.nc"; its folder is created
   std::string title = "armour body time series"; ///< global attribute `title`
   std::string history;               ///< the command line; recorded, with the UTC time, in `history`
+  /// Further global attributes, e.g. what the run replayed (docs/output-files.md): text ones and
+  /// numbers (their units are the documentation's; netCDF global attributes carry none).
+  std::vector<std::pair<std::string, std::string>> textAttributes;
+  std::vector<std::pair<std::string, double>> numberAttributes;
   /// Continue a run: keep the existing file's records with time <= *resumeTime and append after
   /// them (the later ones belonged to the abandoned run after the checkpoint). No file: start anew.
   std::optional<double> resumeTime;  ///< (unit: s)

@@ -6,6 +6,8 @@
 #include <netcdf.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace armour::io {
 
@@ -48,6 +50,28 @@ BodySeriesReader::BodySeriesReader(const fs::path& path) : path_(path) {
     std::string h(length, '\0');
     if (nc_get_att_text(ncid_, NC_GLOBAL, "history", h.data()) == NC_NOERR) history_ = h;
   }
+}
+
+std::optional<std::string> BodySeriesReader::textAttribute(const char* name) const {
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(ncid_, NC_GLOBAL, name, &type, &length) != NC_NOERR || type != NC_CHAR) return std::nullopt;
+  std::string text(length, '\0');
+  check(nc_get_att_text(ncid_, NC_GLOBAL, name, text.data()), name);
+  return text.substr(0, text.find('\0'));
+}
+
+std::optional<double> BodySeriesReader::numberAttribute(const char* name) const {
+  nc_type type = NC_NAT;
+  std::size_t length = 0;
+  if (nc_inq_att(ncid_, NC_GLOBAL, name, &type, &length) != NC_NOERR) return std::nullopt;
+  double value = std::numeric_limits<double>::quiet_NaN();
+  if (type == NC_CHAR || length != 1 || nc_get_att_double(ncid_, NC_GLOBAL, name, &value) != NC_NOERR ||
+      !std::isfinite(value))
+    core::failInput(path_.string(), "global attribute '{}' is not one finite number; the file was not written by "
+                                    "`armour run` or was edited: run again, or give the setting on the command line",
+                    name);
+  return value;
 }
 
 BodySeriesReader::~BodySeriesReader() {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,11 @@ public:
   [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
   [[nodiscard]] const std::string& history() const { return history_; }
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  /// A global text attribute (e.g. `scene_file`), or nothing if the file has none by that name.
+  [[nodiscard]] std::optional<std::string> textAttribute(const char* name) const;
+  /// A global number attribute (e.g. `storm_time_offset`), or nothing if absent. Throws
+  /// core::InputError naming the file and the attribute if it is not one finite number.
+  [[nodiscard]] std::optional<double> numberAttribute(const char* name) const;
 
   /// Positions of records [k0, k0 + n): (record, body, 3) (unit: m).
   void positions(std::size_t k0, std::size_t n, std::vector<double>& out) const;

@@ -26,7 +26,7 @@ std::size_t seriesSyncEvery(const io::OutputSettings& output) {
   return static_cast<std::size_t>(std::clamp(perInterval, 1.0, static_cast<double>(kMaxSyncEvery)));
 }
 
-RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine,
+RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const RunProvenance& provenance,
                        const std::optional<OutputSchedule>& resume)
     : scene_(scene), built_(built) {
   if (resume) {
@@ -59,7 +59,23 @@ RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const st
     io::BodySeriesSettings settings;
     settings.path = scene.output.folder / "bodies.nc";
     settings.title = "armour body time series: " + scene.sourceName;
-    settings.history = commandLine;
+    settings.history = provenance.commandLine;
+    if (!provenance.sceneFile.empty())
+      settings.textAttributes.emplace_back("scene_file", std::filesystem::absolute(provenance.sceneFile).string());
+    if (!provenance.sets.empty()) {
+      std::string sets;
+      for (const std::string& s : provenance.sets) sets += (sets.empty() ? "" : "\n") + s;
+      settings.textAttributes.emplace_back("scene_sets", sets);
+    }
+    const hydro::HydroSettings& h = scene.hydro;
+    if (h.enabled && h.model == hydro::HydroModel::Storm) {
+      settings.textAttributes.emplace_back("storm_file", std::filesystem::absolute(h.storm.file).string());
+      settings.textAttributes.emplace_back("hydro_bodies", h.bodies);
+      settings.numberAttributes.emplace_back("storm_time_offset", h.storm.timeOffset);
+      settings.numberAttributes.emplace_back("storm_offset_x", h.storm.offsetX);
+      settings.numberAttributes.emplace_back("storm_offset_z", h.storm.offsetZ);
+      settings.numberAttributes.emplace_back("storm_ramp_time", h.storm.rampTime);
+    }
     settings.syncEvery = seriesSyncEvery_ = seriesSyncEvery(scene.output);
     if (resume) {
       settings.resumeTime = resume->lastSeriesTime;

@@ -23,9 +23,11 @@
 #include "simulation/SceneBuilder.hpp"
 
 #include <cstddef>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace armour::simulation {
 
@@ -34,11 +36,21 @@ namespace armour::simulation {
 /// interval (checkpoint_interval / series_interval records, at least 1).
 std::size_t seriesSyncEvery(const io::OutputSettings& output);
 
+/// What a run was made from, recorded in bodies.nc so that `armour report` finds the scene as
+/// the run read it (docs/output-files.md, global attributes).
+struct RunProvenance {
+  std::string commandLine;           ///< goes into the netCDF history
+  std::filesystem::path sceneFile;   ///< the scene file (recorded absolute as `scene_file`)
+  std::vector<std::string> sets;     ///< the --set KEY=VALUE changes it was read with (`scene_sets`)
+};
+
 class RunOutputs {
 public:
-  /// Open the writers in scene.output.folder. `commandLine` goes into the netCDF history. With
-  /// `resume` (a restart), continue the files of the run as they stood at that schedule.
-  RunOutputs(const io::Scene& scene, const BuiltScene& built, const std::string& commandLine,
+  /// Open the writers in scene.output.folder. bodies.nc records the provenance and, for a storm
+  /// replay, the scene's effective storm settings (file, time offset, offset, ramp, loaded
+  /// bodies). With `resume` (a restart), continue the files of the run as they stood at that
+  /// schedule.
+  RunOutputs(const io::Scene& scene, const BuiltScene& built, const RunProvenance& provenance,
              const std::optional<OutputSchedule>& resume = std::nullopt);
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;

@@ -8,6 +8,8 @@
 #  - the counts of summary.json match units.csv, and the total displacement of timeseries.csv at
 #    the end matches the sum over units.csv;
 #  - the storm summary finds the synthetic wave (H = 1.5 m, T = 6 s) at the gauge;
+#  - a replay by `armour storm --time-offset --set hydro.storm.offset=...` is reported with those
+#    settings (bodies.nc records them), not the scene file's;
 #  - a missing folder, a folder without bodies.nc and a damaged bodies.nc exit with status 2 and
 #    a message naming the file and the fix.
 # Arguments: the armour binary, the scenes folder, a work folder.
@@ -76,6 +78,28 @@ assert rows and float(rows[0]["storm_time_s"]) >= 12.0 - 1e-9 and float(rows[-1]
 print("report numbers ok")
 PY
 grep -q "bodies.pvd" "$out/run/report/index.html" || fail "index.html does not link the run's bodies.pvd"
+
+# A replay with `armour storm` and its command-line settings (a later storm time, the storm file's
+# origin shifted by 1 m): the report takes them from bodies.nc (scene_file, scene_sets, storm_*),
+# not from the scene file's hydro block (time offset 12 s, no offset).
+"$armour" --log-level warn storm "$out/scene.yaml" --storm "$out/storm.nc" --time-offset 20 --duration 0.5 \
+  --threads 1 --set 'hydro.storm.offset=[1, 0]' -o "$out/replay" >/dev/null
+header=$(ncdump -h "$out/replay/bodies.nc")
+grep -q ':history = ".*armour storm .*--time-offset 20 .*--set .*hydro.storm.offset=\[1, 0\]' <<< "$header" \
+  || fail "bodies.nc's history does not give the armour storm command: $(grep history <<< "$header")"
+grep -q ':storm_time_offset = 20\.' <<< "$header" || fail "bodies.nc does not record storm_time_offset = 20 s"
+"$armour" --log-level warn report "$out/replay" --units unit > "$out/replay.txt" || fail "armour report failed: $(cat "$out/replay.txt")"
+/usr/bin/python3 - "$out/run/report" "$out/replay/report" <<'PY' || fail "the report did not use the replay's settings"
+import csv, json, sys
+first = json.load(open(f"{sys.argv[1]}/summary.json"))["storm"]
+s = json.load(open(f"{sys.argv[2]}/summary.json"))["storm"]
+assert s["time_offset_s"] == 20.0, s["time_offset_s"]
+# The gauge at the slope's toe (x = 8 m in the scene) lies 1 m further in the file's coordinates.
+assert abs(s["gauge_x_m"] - (first["gauge_x_m"] + 1.0)) < 1e-9, (s["gauge_x_m"], first["gauge_x_m"])
+rows = list(csv.DictReader(open(f"{sys.argv[2]}/storm.csv")))
+assert rows and float(rows[0]["storm_time_s"]) >= 20.0 - 1e-9 and float(rows[-1]["storm_time_s"]) <= 20.5 + 1e-9, rows[:1]
+print("replay settings ok")
+PY
 
 # Refusals.
 expect_error() { # status 2 and the message pattern
