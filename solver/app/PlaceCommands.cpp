@@ -78,7 +78,8 @@ void placeScene(const PlaceOptions& o) {
   // Hydro settings do not act on a placement, and its storm file may not exist yet (written after
   // the pack, as scripts/fidelity-ladder does): the identity leaves them out (the text keeps them).
   io::Scene identified = scene;
-  identified.hydro = hydro::HydroSettings{};
+  static const hydro::HydroSettings kNoHydro; // a named default: GCC 12 warns (wrongly) of a temporary's
+  identified.hydro = kNoHydro;                // uninitialised string with -O2 -Wmaybe-uninitialized
   const std::string identity = simulation::sceneIdentity(identified) + "# placement file as run\n" + effectiveText;
   const std::string fingerprint = simulation::fingerprintOf(identity);
   const fs::path checkpointPath = scene.output.folder / "place-checkpoint.nc";
