@@ -138,7 +138,8 @@ void StormLoads::initialise(const simulation::World& world) {
   if (outsideGrid > 0) {
     log->warn("{} of {} loaded bodies have their centroid outside the storm grid of '{}' (x {} .. {} m, z {} .. {} m; "
               "the loaded centroids span x {:.4g} .. {:.4g} m, z {:.4g} .. {:.4g} m in the file's coordinates, "
-              "hydro.storm.offset = [{}, {}] m): outside it they get no hydrodynamic load; if the scene and the "
+              "hydro.storm.offset = [{}, {}] m): their parts beyond the grid take the flow at its edge, and a body "
+              "wholly outside gets no hydrodynamic load; if the scene and the "
               "tank have different origins, set hydro.storm.offset to the file's (x, z) of the scene's origin",
               outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1],
               spanMin.x(), spanMax.x(), spanMin.y(), spanMax.y(), settings_.offsetX, settings_.offsetZ);
@@ -149,8 +150,9 @@ void StormLoads::initialise(const simulation::World& world) {
               reader_->path(), h.trunkOrigin, h.trunkOrigin + h.trunkLength);
   }
   if (outsideTrunk > 0) {
-    log->warn("{} of {} loaded bodies have their centroid outside the trunk of '{}' (y {} .. {} m): elements "
-              "outside it get no hydrodynamic load (a file from a 2D tank should declare uniform_along_y = 1: "
+    log->warn("{} of {} loaded bodies have their centroid outside the trunk of '{}' (y {} .. {} m): their "
+              "elements take the section's y-averaged flow, and a body wholly outside the trunk gets no "
+              "hydrodynamic load (a file from a 2D tank should declare uniform_along_y = 1: "
               "foam-proxy sample --uniform-along-y)",
               outsideTrunk, loadedCount, reader_->path(), trunkMin_, trunkMax_);
   }
@@ -368,12 +370,16 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   Vec3 forceBody = Vec3::Zero(), torqueBody = Vec3::Zero(), velocitySum = Vec3::Zero(), rateSum = Vec3::Zero();
   double wetArea = 0.0, rateArea = 0.0;
   std::uint32_t sampled = 0, wetElements = 0;
+  // Elements beyond the grid's outermost voxel centres (in x or z), or beyond a bounded trunk's
+  // ends in y (the fields are y-averaged: they do not depend on y), take the flow held at the
+  // grid's edge. The water does not end where the sampling box does: a unit reaching out of the
+  // box with its outer elements unloaded would be pushed out by the unbalanced pressure of the
+  // rest (p A, several times its weight a few metres down). Wholly outside, it was skipped above.
+  const double xLo = h.x.front(), xHi = h.x.back(), zLo = h.z.front(), zHi = h.z.back();
   for (std::size_t e = 0; e < el.size(); ++e) {
     const Vec3 c = x + scaledRotation * el.centroid[e];
-    if (trunkBounded_ && (c.y() < trunkMin_ || c.y() > trunkMax_)) {
-      continue;
-    }
-    const storm::FlowSample f = sampler_->sample(c.x(), c.z());
+    const double cx = std::clamp(c.x(), xLo, xHi), cz = std::clamp(c.z(), zLo, zHi);
+    const storm::FlowSample f = sampler_->sample(cx, cz);
     ++sampled;
     if (!f.valid || f.alpha < wetAlpha) {
       continue; // atmospheric: gauge pressure 0
@@ -386,7 +392,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
     wetArea += a;
     velocitySum += a * Vec3(f.u, f.v, f.w);
     if (addedMass) {
-      const storm::FlowSample dudt = sampler_->rate(c.x(), c.z());
+      const storm::FlowSample dudt = sampler_->rate(cx, cz);
       if (dudt.valid) {
         rateSum += a * Vec3(dudt.u, dudt.v, dudt.w);
         rateArea += a;

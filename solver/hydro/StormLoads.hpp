@@ -10,9 +10,10 @@
 ///    M_p = sum_e (r_e - x_b) x (-p_e a_e n_e), with p_e sampled from the storm file (StormSampler)
 ///    at the element centroid's (x, z) in the file's coordinates (the scene's plus offsetX, offsetZ)
 ///    and storm time t + timeOffset, plus the Weibull variability (Variability.hpp); p_e = 0
-///    (atmospheric) where the water fraction is below wetAlpha, the sample is outside the grid or
-///    has no data, or the element lies outside the trunk's y range (not for a
-///    file uniform along y, StormHeader::uniformAlongY: a 2D tank holds at every y);
+///    (atmospheric) where the water fraction is below wetAlpha or the voxels around the sample
+///    have no data; an element beyond the grid's outermost centres (x, z) takes the flow held at
+///    the edge, and one beyond a bounded trunk's ends (y) the section's flow, so that the closed
+///    surface integral stays consistent for a unit reaching out of the sampling box;
 ///  - Morison drag (seed 000 eq. 2) at the centre of mass: F_D = 1/2 rho C_d A (u - v)|u - v|, u the
 ///    area-weighted mean flow velocity over the wet elements, v the body's current velocity, A the
 ///    silhouette area normal to u - v (ProjectedArea.hpp) times s^2 and the wet area fraction;
