@@ -302,6 +302,7 @@ struct DesignInputs {
   double duration = 0.0;     ///< the run's duration (unit: s)
   double permeability = 0.4; ///< van der Meer's P (unit: -)
   bool breaking = false;     ///< Hudson's K_D for breaking waves
+  std::string noHs = "no storm: Hs unknown (give --storm or --hs)"; ///< why ns is unknown
 };
 
 /// Each formula that applies to the unit type, evaluated or marked not applicable with the reason.
@@ -312,7 +313,7 @@ std::vector<FormulaResult> designFormulas(const DesignInputs& in) {
     r.name = name;
     r.source = source;
     if (!std::isfinite(in.ns))
-      r.note = "no storm: Hs unknown (give --storm or --hs)";
+      r.note = in.noHs;
     else if (!std::isfinite(in.cotAlpha))
       r.note = "no slope: give --cot";
     else {
@@ -628,6 +629,7 @@ void report(const ReportOptions& o) {
   design.duration = runDuration;
   design.permeability = o.permeability;
   design.breaking = o.breaking;
+  if (!stormPath.empty()) design.noHs = "no sea state: Hs from " + hsSource;
   const std::vector<FormulaResult> formulas = designFormulas(design);
 
   // summary.json
