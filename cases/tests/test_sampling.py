@@ -121,6 +121,13 @@ def main():
         print("FAIL: foam-proxy sample failed")
         return 1
     ok = storm_check(armour, offline)
+    # The title names the sea (make_case.py), where `armour report` looks for Hs: a solitary wave
+    # is named by its height, which the report must not read as a sea state ("H=" or "Hs=").
+    header = subprocess.run(["ncdump", "-h", offline], check=True, stdout=subprocess.PIPE, text=True).stdout
+    if ':title = "nwt' + dim + '-smoke: solitary wave of height 3.0 m"' not in header:
+        print("FAIL: the storm file's title does not name the solitary wave: "
+              + next((l.strip() for l in header.splitlines() if ":title" in l), "(no title)"))
+        ok = False
     online = os.path.join(case, "postProcessing", "armourSampler", "storm.nc")
     if sampler:
         if not os.path.isfile(online):

@@ -761,7 +761,15 @@ coeffs          {{ n ({npd} 1 1); }}
     def write_sample_script(self):
         """`sample`: the case's storm file from the stock surfaces/sets output (foam-proxy sample)."""
         args = " ".join(shlex.quote(a) for a in self.grid_args(self.sampling))
-        name = shlex.quote(self.p.get("name", "case"))
+        # The sea the wavemaker makes goes into the title, where `armour report` finds Hs and Tp
+        # when the replayed record is too short for wave statistics (docs/report.md). A solitary
+        # wave has no sea state: its height is named so that it is not read as one.
+        w = self.p["wave"]
+        sea = {"irregular": lambda: f"JONSWAP Hs={w.get('Hs')} m Tp={w.get('Tp')} s at the wavemaker",
+               "solitary": lambda: f"solitary wave of height {w.get('height')} m",
+               "none": lambda: "still water"}.get(
+            w["model"], lambda: f"{w['model']} waves H={w.get('height')} m T={w.get('period')} s at the wavemaker")()
+        name = shlex.quote(f"{self.p.get('name', 'case')}: {sea}")
         self.write_plain("sample", f"""#!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # sample: write this case's storm file from the output of the stock surfaces/sets function objects
