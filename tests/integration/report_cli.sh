@@ -10,8 +10,8 @@
 #  - the storm summary finds the synthetic wave (H = 1.5 m, T = 6 s) at the gauge;
 #  - a replay by `armour storm --time-offset --set hydro.storm.offset=...` is reported with those
 #    settings (bodies.nc records them), not the scene file's;
-#  - a missing folder, a folder without bodies.nc and a damaged bodies.nc exit with status 2 and
-#    a message naming the file and the fix.
+#  - a missing folder, a folder without bodies.nc, a damaged bodies.nc and one whose recorded
+#    storm time offset is not a number exit with status 2 and a message naming the file and the fix.
 # Arguments: the armour binary, the scenes folder, a work folder.
 set -euo pipefail
 armour="$1"
@@ -116,4 +116,13 @@ expect_error "empty/bodies.nc: missing" "$out/empty" --scene "$out/scene.yaml"
 mkdir -p "$out/damaged"
 head -c 2000 "$out/run/bodies.nc" > "$out/damaged/bodies.nc"
 expect_error "damaged/bodies.nc: open (not a readable netCDF file" "$out/damaged" --scene "$out/scene.yaml"
+# A run attribute that is not a number (an edited file) is named.
+mkdir -p "$out/edited"
+cp "$out/replay/bodies.nc" "$out/edited/bodies.nc"
+/usr/bin/python3 -c "
+import netCDF4, sys
+with netCDF4.Dataset(sys.argv[1], 'a') as d:
+    d.storm_time_offset = 'twenty'
+" "$out/edited/bodies.nc"
+expect_error "edited/bodies.nc: global attribute 'storm_time_offset' is not one finite number" "$out/edited"
 echo "report_cli: all checks passed"
