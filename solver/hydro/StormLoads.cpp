@@ -186,6 +186,7 @@ void StormLoads::syncBodies(const simulation::World& world) {
   applied_.resize(n);
   elementCount_.resize(n, 0);
   wetCount_.resize(n, 0);
+  filledCount_.resize(n, 0);
   skipped_.resize(n, 0);
   for (std::size_t i = first; i < n; ++i) {
     const auto b = static_cast<BodyId>(i);
@@ -235,6 +236,7 @@ void StormLoads::update(const simulation::World& world, std::int64_t k, double t
   const double tk = static_cast<double>(k) * dt;
   checkStormTime(tk + settings_.timeOffset, time);
   counters_.evaluatedBodies = counters_.skippedBodies = counters_.evaluatedElements = counters_.wetElements = 0;
+  counters_.filledElements = 0;
   if (settings_.betweenUpdates == BetweenUpdates::Hold) {
     evaluate(world, tk + settings_.timeOffset, held_[0]);
   } else {
@@ -285,7 +287,7 @@ void StormLoads::evaluate(const simulation::World& world, double stormTime, std:
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto b = static_cast<BodyId>(i);
-    evaluateBody(world, b, etaColumns, out[b], elementCount_[b], wetCount_[b], skipped_[b]);
+    evaluateBody(world, b, etaColumns, out[b], elementCount_[b], wetCount_[b], filledCount_[b], skipped_[b]);
   }
   // Bodies: those of this evaluation; elements: summed over the evaluations of the update (two
   // when Interpolate starts).
@@ -296,6 +298,9 @@ void StormLoads::evaluate(const simulation::World& world, double stormTime, std:
     }
     counters_.evaluatedElements += elementCount_[b];
     counters_.wetElements += wetCount_[b];
+    counters_.filledElements += filledCount_[b];
+    counters_.wetTotal += wetCount_[b];
+    counters_.filledTotal += filledCount_[b];
     counters_.skippedBodies += skipped_[b];
     counters_.evaluatedBodies += elementCount_[b] > 0 ? 1 : 0;
     ++counters_.bodyEvaluationsTotal;
@@ -306,17 +311,27 @@ void StormLoads::evaluate(const simulation::World& world, double stormTime, std:
 std::string StormLoads::summary() const {
   const auto& c = counters_;
   if (c.bodyEvaluationsTotal == 0) return {};
-  return fmt::format("hydro: {} load updates; {} of {} unit evaluations skipped ({:.1f} %: dry, above the water, or "
-                     "outside the storm grid or its trunk section, no surface element sampled)",
-                     c.updates, c.skippedTotal, c.bodyEvaluationsTotal,
-                     100.0 * static_cast<double>(c.skippedTotal) / static_cast<double>(c.bodyEvaluationsTotal));
+  std::string text = fmt::format("hydro: {} load updates; {} of {} unit evaluations skipped ({:.1f} %: dry, above the "
+                                 "water, or outside the storm grid or its trunk section, no surface element sampled)",
+                                 c.updates, c.skippedTotal, c.bodyEvaluationsTotal,
+                                 100.0 * static_cast<double>(c.skippedTotal) /
+                                     static_cast<double>(c.bodyEvaluationsTotal));
+  if (c.filledTotal > 0) {
+    text += fmt::format("; {} of {} wet element samples ({:.2f} %) fell in voxels without data and took the gap fill "
+                        "(still water under the free surface: docs/theory.md)",
+                        c.filledTotal, c.wetTotal,
+                        100.0 * static_cast<double>(c.filledTotal) / static_cast<double>(c.wetTotal));
+  }
+  return text;
 }
 
 void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const std::vector<double>& etaColumns,
-                              HeldLoad& out, std::uint32_t& elements, std::uint32_t& wet, std::uint8_t& skipped) const {
+                              HeldLoad& out, std::uint32_t& elements, std::uint32_t& wet, std::uint32_t& filled,
+                              std::uint8_t& skipped) const {
   out = HeldLoad{};
   elements = 0;
   wet = 0;
+  filled = 0;
   skipped = 0;
   const auto& bodies = world.bodies();
   if (!loaded_[b] || bodies.motionType(b) == dynamics::MotionType::Static) {
@@ -369,22 +384,25 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   const double wetAlpha = settings_.wetAlpha;
   Vec3 forceBody = Vec3::Zero(), torqueBody = Vec3::Zero(), velocitySum = Vec3::Zero(), rateSum = Vec3::Zero();
   double wetArea = 0.0, rateArea = 0.0;
-  std::uint32_t sampled = 0, wetElements = 0;
+  std::uint32_t sampled = 0, wetElements = 0, filledElements = 0;
   // Elements beyond the grid's outermost voxel centres (in x or z), or beyond a bounded trunk's
   // ends in y (the fields are y-averaged: they do not depend on y), take the flow held at the
   // grid's edge. The water does not end where the sampling box does: a unit reaching out of the
   // box with its outer elements unloaded would be pushed out by the unbalanced pressure of the
   // rest (p A, several times its weight a few metres down). Wholly outside, it was skipped above.
+  // For the same reason elements in voxels without data (files sampled on the unit surfaces) take
+  // the gap fill, still water under the column's free surface, not atmospheric pressure.
   const double xLo = h.x.front(), xHi = h.x.back(), zLo = h.z.front(), zHi = h.z.back();
   for (std::size_t e = 0; e < el.size(); ++e) {
     const Vec3 c = x + scaledRotation * el.centroid[e];
     const double cx = std::clamp(c.x(), xLo, xHi), cz = std::clamp(c.z(), zLo, zHi);
-    const storm::FlowSample f = sampler_->sample(cx, cz);
+    const storm::FlowSample f = sampler_->sampleOrFill(cx, cz);
     ++sampled;
     if (!f.valid || f.alpha < wetAlpha) {
       continue; // atmospheric: gauge pressure 0
     }
     ++wetElements;
+    filledElements += f.filled ? 1 : 0;
     const double a = el.area[e];
     const double p = f.p + deviation[el.patch[e]];
     forceBody.noalias() -= (p * a) * el.normal[e];
@@ -392,7 +410,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
     wetArea += a;
     velocitySum += a * Vec3(f.u, f.v, f.w);
     if (addedMass) {
-      const storm::FlowSample dudt = sampler_->rate(cx, cz);
+      const storm::FlowSample dudt = sampler_->rateOrFill(cx, cz);
       if (dudt.valid) {
         rateSum += a * Vec3(dudt.u, dudt.v, dudt.w);
         rateArea += a;
@@ -401,6 +419,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   }
   elements = sampled;
   wet = wetElements;
+  filled = filledElements;
   if (settings_.pressure) {
     out.pressureForce = (s * s) * (rotation * forceBody);
     out.pressureTorque = (s * s * s) * (rotation * torqueBody);

@@ -83,9 +83,13 @@ struct StormLoadCounters {
   std::size_t skippedBodies = 0;
   std::size_t evaluatedElements = 0; ///< elements sampled (both evaluations when Interpolate starts) (unit: -)
   std::size_t wetElements = 0;       ///< of which wet (same) (unit: -)
+  /// Of the wet ones, those in voxels without data that took the gap fill (same) (unit: -).
+  std::size_t filledElements = 0;
   std::uint64_t updates = 0;         ///< load updates since construction or restore (unit: -)
   /// Since construction or restore: loaded-body evaluations, and those skipped (unit: -).
   std::uint64_t bodyEvaluationsTotal = 0, skippedTotal = 0;
+  /// Since construction or restore: wet element samples, and those of the gap fill (unit: -).
+  std::uint64_t wetTotal = 0, filledTotal = 0;
 };
 
 class StormLoads final : public simulation::LoadStage {
@@ -139,7 +143,8 @@ private:
   void checkStormTime(double stormTime, double simulationTime) const;
   void evaluate(const simulation::World& world, double stormTime, std::vector<HeldLoad>& out);
   void evaluateBody(const simulation::World& world, BodyId b, const std::vector<double>& etaColumns,
-                    HeldLoad& out, std::uint32_t& elements, std::uint32_t& wet, std::uint8_t& skipped) const;
+                    HeldLoad& out, std::uint32_t& elements, std::uint32_t& wet, std::uint32_t& filled,
+                    std::uint8_t& skipped) const;
   [[nodiscard]] HeldLoad current(BodyId b, double time) const;
 
   StormLoadSettings settings_;
@@ -165,6 +170,7 @@ private:
   std::vector<AppliedLoad> applied_;
   std::vector<std::uint32_t> elementCount_;
   std::vector<std::uint32_t> wetCount_;
+  std::vector<std::uint32_t> filledCount_;
   std::vector<std::uint8_t> skipped_;
   std::int64_t heldUpdate_ = -1;         ///< k of the held loads; -1: none yet
   StormLoadCounters counters_;

@@ -74,6 +74,16 @@ StormSampler::StormSampler(const StormReader& reader) : reader_(reader) {
   const auto& h = reader.header();
   const auto& times = reader.times();
   const std::size_t nx = h.nx();
+  dataLevels_.assign(nx, {});
+  for (std::size_t iz = 0; iz < h.nz(); ++iz) {
+    for (std::size_t ix = 0; ix < nx; ++ix) {
+      if (h.samples[iz * nx + ix] > 0) {
+        dataLevels_[ix].push_back(iz);
+      } else {
+        hasGaps_ = true;
+      }
+    }
+  }
   crossings_.assign(nx, {});
   // Zero crossings of eta per column, the crossing time by linear interpolation between the two
   // records. A record with eta == 0 counts as trough (crest is eta > 0), so a crossing is a change
@@ -125,51 +135,141 @@ void StormSampler::setTime(double t) {
   time_ = t;
 }
 
-FlowSample StormSampler::sample(double x, double z) const {
+FlowSample StormSampler::voxel(std::size_t i, bool rate) const {
+  FlowSample v;
+  const bool hasV = reader_.header().hasVelocityY;
+  if (rate) {
+    const auto& times = reader_.times();
+    const double inv = 1.0 / (times[lower_ + 1] - times[lower_]);
+    v.p = (b_.p[i] - a_.p[i]) * inv;
+    v.u = (b_.u[i] - a_.u[i]) * inv;
+    v.v = hasV ? (b_.v[i] - a_.v[i]) * inv : 0.0;
+    v.w = (b_.w[i] - a_.w[i]) * inv;
+    v.alpha = (b_.alpha[i] - a_.alpha[i]) * inv;
+  } else {
+    const double wa = 1.0 - weight_, wb = weight_;
+    v.p = wa * a_.p[i] + wb * b_.p[i];
+    v.u = wa * a_.u[i] + wb * b_.u[i];
+    v.v = hasV ? wa * a_.v[i] + wb * b_.v[i] : 0.0;
+    v.w = wa * a_.w[i] + wb * b_.w[i];
+    v.alpha = wa * a_.alpha[i] + wb * b_.alpha[i];
+  }
+  return v;
+}
+
+void StormSampler::accumulate(FlowSample& out, double weight, const FlowSample& v) {
+  out.p += weight * v.p;
+  out.u += weight * v.u;
+  out.v += weight * v.v;
+  out.w += weight * v.w;
+  out.alpha += weight * v.alpha;
+}
+
+FlowSample StormSampler::sample(double x, double z) const { return interpolate(x, z, false); }
+
+FlowSample StormSampler::rate(double x, double z) const { return interpolate(x, z, true); }
+
+FlowSample StormSampler::interpolate(double x, double z, bool rate) const {
   FlowSample out;
   Stencil s;
   if (!makeStencil(reader_.header(), x, z, s)) {
     return out;
   }
-  const double wb = weight_;
-  const double wa = 1.0 - weight_;
-  const bool hasV = reader_.header().hasVelocityY;
   for (int c = 0; c < s.corners; ++c) {
-    const std::size_t i = s.voxel[c];
-    const double w = s.weight[c];
-    out.p += w * (wa * a_.p[i] + wb * b_.p[i]);
-    out.u += w * (wa * a_.u[i] + wb * b_.u[i]);
-    if (hasV) {
-      out.v += w * (wa * a_.v[i] + wb * b_.v[i]);
-    }
-    out.w += w * (wa * a_.w[i] + wb * b_.w[i]);
-    out.alpha += w * (wa * a_.alpha[i] + wb * b_.alpha[i]);
+    accumulate(out, s.weight[c], voxel(s.voxel[c], rate));
   }
   out.valid = true;
   return out;
 }
 
-FlowSample StormSampler::rate(double x, double z) const {
+FlowSample StormSampler::sampleOrFill(double x, double z) const {
+  return hasGaps_ ? withFill(x, z, false) : sample(x, z);
+}
+
+FlowSample StormSampler::rateOrFill(double x, double z) const {
+  return hasGaps_ ? withFill(x, z, true) : rate(x, z);
+}
+
+FlowSample StormSampler::withFill(double x, double z, bool rate) const {
+  const auto& h = reader_.header();
+  std::size_t ix = 0, iz = 0;
+  double tx = 0.0, tz = 0.0;
+  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
+    return {};
+  }
+  const std::size_t nx = h.nx();
+  const std::size_t cx[4] = {ix, ix + 1, ix, ix + 1};
+  const std::size_t cz[4] = {iz, iz, iz + 1, iz + 1};
+  const double weights[4] = {(1.0 - tx) * (1.0 - tz), tx * (1.0 - tz), (1.0 - tx) * tz, tx * tz};
+  bool allData = true;
+  for (int c = 0; c < 4; ++c) {
+    allData = allData && (!(weights[c] > 0.0) || h.samples[cz[c] * nx + cx[c]] > 0);
+  }
+  if (allData) {
+    return rate ? this->rate(x, z) : sample(x, z); // the file's values, bit for bit
+  }
   FlowSample out;
-  Stencil s;
-  if (!makeStencil(reader_.header(), x, z, s)) {
-    return out;
+  out.valid = true;
+  for (int c = 0; c < 4; ++c) {
+    if (!(weights[c] > 0.0)) {
+      continue;
+    }
+    const std::size_t i = cz[c] * nx + cx[c];
+    if (h.samples[i] > 0) {
+      accumulate(out, weights[c], voxel(i, rate));
+    } else {
+      accumulate(out, weights[c], fill(cx[c], cz[c], rate));
+      out.filled = true;
+    }
+  }
+  return out;
+}
+
+FlowSample StormSampler::fill(std::size_t ix, std::size_t iz, bool rate) const {
+  const auto& h = reader_.header();
+  FlowSample out;
+  const double etaA = reader_.eta(lower_)[ix];
+  const double etaB = reader_.eta(lower_ + 1)[ix];
+  const double surface = h.stillWaterLevel + (1.0 - weight_) * etaA + weight_ * etaB;
+  const double z = h.z[iz];
+  if (!(z < surface)) {
+    return out; // above the free surface: air, gauge pressure 0
   }
   const auto& times = reader_.times();
   const double inv = 1.0 / (times[lower_ + 1] - times[lower_]);
-  const bool hasV = reader_.header().hasVelocityY;
-  for (int c = 0; c < s.corners; ++c) {
-    const std::size_t i = s.voxel[c];
-    const double w = s.weight[c] * inv;
-    out.p += w * (b_.p[i] - a_.p[i]);
-    out.u += w * (b_.u[i] - a_.u[i]);
-    if (hasV) {
-      out.v += w * (b_.v[i] - a_.v[i]);
-    }
-    out.w += w * (b_.w[i] - a_.w[i]);
-    out.alpha += w * (b_.alpha[i] - a_.alpha[i]);
+  const double rhoG = h.waterDensity * h.gravity;
+  if (rate) {
+    out.p = rhoG * (etaB - etaA) * inv;
+  } else {
+    out.p = rhoG * (surface - z);
+    out.alpha = 1.0;
   }
-  out.valid = true;
+  // The flow: the wet voxel with data of this column nearest in z (the lower one at a tie).
+  const std::size_t nx = h.nx();
+  const auto& levels = dataLevels_[ix];
+  const auto wet = [&](std::size_t k) {
+    const std::size_t i = k * nx + ix;
+    return (1.0 - weight_) * a_.alpha[i] + weight_ * b_.alpha[i] >= 0.5;
+  };
+  // Two cursors walking away from iz, down (lo - 1) and up (hi), the nearer one first.
+  std::size_t hi = static_cast<std::size_t>(std::lower_bound(levels.begin(), levels.end(), iz) - levels.begin());
+  std::size_t lo = hi;
+  std::size_t source = SIZE_MAX;
+  while (lo > 0 || hi < levels.size()) {
+    const bool down = hi == levels.size() || (lo > 0 && iz - levels[lo - 1] <= levels[hi] - iz);
+    const std::size_t k = down ? levels[--lo] : levels[hi++];
+    if (wet(k)) {
+      source = k * nx + ix;
+      break;
+    }
+  }
+  if (source == SIZE_MAX) {
+    return out; // no wet voxel with data in the column: still water
+  }
+  const FlowSample flow = voxel(source, rate);
+  out.u = flow.u;
+  out.v = flow.v;
+  out.w = flow.w;
   return out;
 }
 

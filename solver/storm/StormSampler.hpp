@@ -10,7 +10,12 @@
 ///  - within half a voxel outside the outermost centres, the value of the edge is held;
 ///  - farther out the point is outside the grid: valid = false;
 ///  - corners in voxels without data (samples = 0) are dropped and the remaining weights
-///    renormalised; with no corner left, valid = false.
+///    renormalised; with no corner left, valid = false;
+///  - sampleOrFill() / rateOrFill() (the solver's loads) instead give every corner without data
+///    the gap fill at its centre: still water under the column's free surface (hydrostatic p,
+///    alpha 1; air above it) moving with the nearest wet voxel with data of the column. Files
+///    sampled on the unit surfaces (seed 000's 3D tanks) have no data away from the armour layer,
+///    where a displaced unit can go; the fill keeps the field continuous and exact in still water.
 ///
 /// Wave phase for the variability model: at each x column the zero crossings of eta(t) split the
 /// record into half waves, numbered from 0; a half wave with eta > 0 is a crest, else a trough.
@@ -34,7 +39,8 @@ struct FlowSample {
   double v = 0.0;
   double w = 0.0;
   double alpha = 0.0;
-  bool valid = false; ///< false: outside the grid or no data around the point (values are 0)
+  bool valid = false;  ///< false: outside the grid or no data around the point (values are 0)
+  bool filled = false; ///< sampleOrFill()/rateOrFill(): some weight fell on the gap fill
 };
 
 /// Where a point is in the wave cycle at its x.
@@ -59,6 +65,18 @@ public:
   /// Time derivative of the velocity at (x, z): the slope between the two bracketing records
   /// (unit: m/s^2; the local derivative du/dt, not the material derivative).
   [[nodiscard]] FlowSample rate(double x, double z) const;
+  /// sample(), but a corner without data takes the gap fill at its voxel centre (x_i, z_k)
+  /// instead of being dropped (filled = true when one with weight did): with the column's free
+  /// surface zs = still water level + eta_i(t), below zs alpha = 1, p = rho g (zs - z_k) and the
+  /// velocity of the nearest voxel with data of the column (in z) that is wet (alpha >= 0.5; none:
+  /// 0); above zs alpha = p = 0 and no velocity. Every point inside the grid is valid; outside it,
+  /// valid = false as sample(). A file without gaps gives sample()'s values bit for bit.
+  [[nodiscard]] FlowSample sampleOrFill(double x, double z) const;
+  /// rate() with the same corners: at a filled one d/dt of the source voxel's velocity and
+  /// rho g d(eta_i)/dt for p (alpha: 0).
+  [[nodiscard]] FlowSample rateOrFill(double x, double z) const;
+  /// Does the file have voxels without data (samples = 0)? (Then the gap fill can apply.)
+  [[nodiscard]] bool hasGaps() const { return hasGaps_; }
   /// Free-surface elevation and wave phase at x, current time. Outside the x range: the edge column.
   [[nodiscard]] WavePhase phase(double x) const;
 
@@ -73,6 +91,19 @@ private:
   std::size_t heldA_ = SIZE_MAX, heldB_ = SIZE_MAX;
   /// Per x column, the times of the zero crossings of eta (increasing).
   std::vector<std::vector<double>> crossings_;
+  /// Per x column, the z indices of its voxels with data (increasing): the gap fill's sources.
+  std::vector<std::vector<std::size_t>> dataLevels_;
+  bool hasGaps_ = false;
+
+  /// The gap fill at the centre of voxel (ix, iz); `rate`: its time derivative instead.
+  [[nodiscard]] FlowSample fill(std::size_t ix, std::size_t iz, bool rate) const;
+  /// sampleOrFill() (rate = false) and rateOrFill().
+  [[nodiscard]] FlowSample withFill(double x, double z, bool rate) const;
+  /// sample() (rate = false) and rate().
+  [[nodiscard]] FlowSample interpolate(double x, double z, bool rate) const;
+  /// The file's values at voxel i, current time (rate: their time derivative).
+  [[nodiscard]] FlowSample voxel(std::size_t i, bool rate) const;
+  static void accumulate(FlowSample& out, double weight, const FlowSample& v);
 };
 
 } // namespace armour::storm

@@ -6,10 +6,13 @@
 // threads.
 //
 //   bench_hydro [--units 242] [--volume 5] [--element-size 0.1] [--threads 1,2] [--updates 20]
-//               [--evaluations 2000] [--storm airy|still] [--added-mass] [--keep-file PATH]
+//               [--evaluations 2000] [--storm airy|still] [--added-mass] [--layer-band T]
+//               [--keep-file PATH]
 //
 // The storm is written once with storm::writeSynthStorm (Airy, H = 4 m, T = 10 s on 14 m of water,
-// voxels of 0.1 m; or still water) into a temporary folder. Every thread count runs the same
+// voxels of 0.1 m; or still water) into a temporary folder. --layer-band T keeps data only in the
+// voxels within T metres of the plane of the unit centres, as a 3D tank sampled on the units'
+// surfaces (seed 000) has: elements elsewhere take the gap fill (docs/theory.md). Every thread count runs the same
 // updates; the loads must be bit-identical across thread counts, or the case prints INVALID and the
 // program exits with status 2 (timing a wrong result is worthless). Figures go to
 // docs/benchmarks.md with the printed command.
@@ -64,8 +67,13 @@ struct Options {
   int evaluations = 2000;
   std::string storm = "airy";
   bool addedMass = false;
+  double layerBand = 0.0; // m; 0: data in every voxel
   std::string keepFile;
 };
+
+/// The layer's slope (1:1.5) and the point of its plane of unit centres at the toe (x, z) (m).
+constexpr double kSlopeCot = 1.5;
+constexpr double kToeX = 8.0, kToeZ = -12.0;
 
 /// The armour layer: rows up a 1:1.5 slope from the toe at (x, z) = (8, -12) m, alternately 12 and
 /// 11 units along the trunk, spaced 0.95 Dn up the slope and 2 Dn along y (a loose layer: the
@@ -77,7 +85,7 @@ void placeUnits(World& world, const Options& o, double dn) {
   armour::geometry::ShapeRequest request;
   request.volume = o.volume;
   const auto shape = world.addShape("coreloc", armour::geometry::makeShape("coreloc", request));
-  const double theta = std::atan(1.0 / 1.5);
+  const double theta = std::atan(1.0 / kSlopeCot);
   std::mt19937_64 rng(2024);
   std::normal_distribution<double> normal;
   int placed = 0;
@@ -90,7 +98,7 @@ void placeUnits(World& world, const Options& o, double dn) {
       b.shape = shape;
       b.material = material;
       const double y = 2.0 + 2.0 * dn * j + (row % 2 == 0 ? 0.0 : dn);
-      b.position = Vec3(8.0 + s * std::cos(theta), y, -12.0 + 0.5 * dn + s * std::sin(theta));
+      b.position = Vec3(kToeX + s * std::cos(theta), y, kToeZ + 0.5 * dn + s * std::sin(theta));
       b.orientation = Quat(Eigen::AngleAxisd(std::numbers::pi * (0.5 + 0.5 * normal(rng)),
                                              Vec3(normal(rng), normal(rng), normal(rng)).normalized()));
       b.velocity = 0.2 * Vec3(normal(rng), normal(rng), normal(rng));
@@ -99,7 +107,7 @@ void placeUnits(World& world, const Options& o, double dn) {
   }
 }
 
-std::string writeStorm(const Options& o, const fs::path& dir) {
+std::string writeStorm(const Options& o, const fs::path& dir, double dn) {
   armour::storm::SynthSettings s;
   s.model = o.storm == "still" ? armour::storm::SynthModel::Still : armour::storm::SynthModel::Airy;
   s.xMin = 0.0;
@@ -119,7 +127,27 @@ std::string writeStorm(const Options& o, const fs::path& dir) {
   const std::string path = o.keepFile.empty() ? (dir / "storm.nc").string() : o.keepFile;
   armour::storm::StormWriteOptions w;
   w.deflateLevel = 1;
-  armour::storm::writeSynthStorm(path, s, w, "bench_hydro");
+  if (!(o.layerBand > 0.0)) {
+    armour::storm::writeSynthStorm(path, s, w, "bench_hydro");
+    return path;
+  }
+  // Data only near the plane of the unit centres (distance along its normal <= layerBand).
+  const armour::storm::StormSynth synth(s, "bench_hydro --layer-band");
+  armour::storm::StormHeader h = synth.header();
+  const double theta = std::atan(1.0 / kSlopeCot);
+  for (std::size_t k = 0; k < h.nz(); ++k) {
+    for (std::size_t i = 0; i < h.nx(); ++i) {
+      const double d = -(h.x[i] - kToeX) * std::sin(theta) + (h.z[k] - kToeZ - 0.5 * dn) * std::cos(theta);
+      h.samples[k * h.nx() + i] = std::abs(d) <= o.layerBand ? 1 : 0;
+    }
+  }
+  armour::storm::StormWriter writer(path, h, w);
+  armour::storm::StormRecord r;
+  for (std::size_t k = 0; k < synth.recordCount(); ++k) {
+    synth.record(synth.recordTime(k), r);
+    writer.append(r);
+  }
+  writer.finish();
   return path;
 }
 
@@ -193,6 +221,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10000000));
   app.add_option("--storm", o.storm, "synthetic storm")->check(CLI::IsMember({"airy", "still"}));
   app.add_flag("--added-mass", o.addedMass, "added mass on (C_a = 1)");
+  app.add_option("--layer-band", o.layerBand,
+                 "keep data only within this distance of the layer's plane (m), as a 3D tank's file; 0: everywhere")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--keep-file", o.keepFile, "write the storm file here and keep it");
   CLI11_PARSE(app, argc, argv);
 
@@ -209,7 +240,7 @@ int main(int argc, char** argv) {
     World world;
     placeUnits(world, o, dn);
     double t0 = wallNow();
-    const std::string path = writeStorm(o, dir);
+    const std::string path = writeStorm(o, dir, dn);
     const double writeSeconds = wallNow() - t0;
     auto reader = std::make_shared<const armour::storm::StormReader>(path);
     const auto& h = reader->header();
@@ -240,14 +271,14 @@ int main(int argc, char** argv) {
                  probe.areaTable(world.bodyShape(0)).directions());
     }
     fmt::print("| threads | build stage (s) | per update (ms) | cpu/wall | of which reading records (ms) | "
-               "elements sampled | wet | bodies evaluated / skipped | ns per element (integration only) | "
+               "elements sampled | wet (of which gap fill) | bodies evaluated / skipped | ns per element (integration only) | "
                "per force evaluation between updates (us) |\n");
     fmt::print("|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Result& r : results) {
-      fmt::print("| {} | {:.3f} | {:.2f} | {:.2f} | {:.2f} | {} | {} | {} / {} | {:.1f} | {:.2f} |\n", r.threads,
+      fmt::print("| {} | {:.3f} | {:.2f} | {:.2f} | {:.2f} | {} | {} ({}) | {} / {} | {:.1f} | {:.2f} |\n", r.threads,
                  r.constructSeconds, 1e3 * r.updateSeconds, r.cpuPerWall, 1e3 * r.readSeconds,
                  r.counters.evaluatedElements,
-                 r.counters.wetElements, r.counters.evaluatedBodies, r.counters.skippedBodies,
+                 r.counters.wetElements, r.counters.filledElements, r.counters.evaluatedBodies, r.counters.skippedBodies,
                  1e9 * (r.updateSeconds - r.readSeconds) /
                      std::max<double>(1.0, static_cast<double>(r.counters.evaluatedElements)),
                  1e6 * r.evaluationSeconds);
@@ -257,6 +288,26 @@ int main(int argc, char** argv) {
         fmt::print("INVALID: the loads at {} and {} threads differ\n", results[0].threads, results[i].threads);
         status = 2;
       }
+    }
+    if (o.layerBand > 0.0) {
+      // What the gaps cost in accuracy: the same updates on the file with data everywhere.
+      Options full = o;
+      full.layerBand = 0.0;
+      full.keepFile = (dir / "full.nc").string();
+      auto fullReader = std::make_shared<const armour::storm::StormReader>(writeStorm(full, dir, dn));
+      armour::hydro::StormLoadSettings fullSettings = settings;
+      fullSettings.file = full.keepFile;
+      const Result reference = run(world, fullSettings, fullReader, full, o.threads.front());
+      double diff = 0.0, norm = 0.0, worst = 0.0;
+      for (std::size_t b = 0; b < reference.force.size(); ++b) {
+        const double d = (results[0].force[b] - reference.force[b]).norm();
+        diff += d * d;
+        norm += reference.force[b].squaredNorm();
+        worst = std::max(worst, d / std::max(1e-30, reference.force[b].norm()));
+      }
+      fmt::print("\ngap fill against data everywhere (last evaluation): rms force difference {:.2f} % of the rms "
+                 "force, largest unit {:.2f} %\n",
+                 100.0 * std::sqrt(diff / std::max(1e-30, norm)), 100.0 * worst);
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "bench_hydro: {}\n", e.what());

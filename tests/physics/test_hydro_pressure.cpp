@@ -246,6 +246,50 @@ TEST_F(HydroTest, UnitsReachingOutOfTheSamplingBoxKeepArchimedes) {
   }
 }
 
+TEST_F(HydroTest, UnitsReachingIntoVoxelsWithoutDataKeepArchimedes) {
+  // A storm file sampled on the units' surfaces (seed 000's 3D tanks) has data only in the armour
+  // layer: here still water whose voxels hold data only in a band x < 0, z > -8 m (the layer; in
+  // front of it, x > 0, and below it, samples = 0). Units straddling the band's front or its
+  // bottom, or wholly outside it, take the gap fill (still water under the free surface) on their
+  // elements in the empty voxels: Archimedes to the bounds of ArchimedesOnSubmergedClosedUnits
+  // (0.5 %, 1e-3 rho g V). Leaving those elements atmospheric (as before) pushed the units out of
+  // the band with the pressure of the rest and took the buoyancy of the part outside.
+  const std::string path = file("band.nc");
+  storm::StormHeader h = gridHeader(-10.0, 10.0, -12.0, 2.0, 0.5, 0.0);
+  for (std::size_t k = 0; k < h.nz(); ++k) {
+    for (std::size_t i = 0; i < h.nx(); ++i) {
+      h.samples[k * h.nx() + i] = (h.x[i] < 0.0 && h.z[k] > -8.0) ? 17 : 0;
+    }
+  }
+  writeStorm(path, h, {0.0, 10.0}, hydrostatic(0.0), flat());
+  struct Case {
+    std::string shape;
+    Vec3 position;
+    double scale;
+  };
+  const std::vector<Case> cases = {{"cube", Vec3(0.0, 0.0, -4.0), 1.0},       // half in front of the band
+                                   {"coreloc", Vec3(0.2, 0.3, -5.0), 1.3},    // across the band's front
+                                   {"cube", Vec3(-3.0, 0.0, -8.0), 1.0},      // half below the band
+                                   {"dolos", Vec3(4.0, 0.0, -6.0), 1.0}};     // wholly in front of it
+  for (const Case& c : cases) {
+    Scene scene;
+    const BodyId b = scene.add(c.shape, c.position, someOrientation(3), c.scale);
+    StormLoads stage(scene.world, settingsFor(path), "all", path);
+    const Loads l = applyAt(stage, scene.world, 0.0);
+    const double buoyancy = kRho * kG * std::pow(c.scale, 3);
+    const std::string what = c.shape + " at " + fmt::format("({}, {}, {})", c.position.x(), c.position.y(),
+                                                             c.position.z());
+    RecordProperty(c.shape + "_" + fmt::format("{}", c.position.x()) + "_horizontal_over_buoyancy",
+                   fmt::format("{:.3e}", std::hypot(l.force[b].x(), l.force[b].y()) / buoyancy));
+    EXPECT_NEAR(l.force[b].z(), buoyancy, 5e-3 * buoyancy) << what;
+    EXPECT_LT(std::hypot(l.force[b].x(), l.force[b].y()), 1e-3 * buoyancy) << what;
+    EXPECT_LT(l.torque[b].norm(), 1e-3 * buoyancy * c.scale) << what;
+    EXPECT_GT(stage.counters().filledElements, 0u) << what;
+    EXPECT_LE(stage.counters().filledElements, stage.counters().wetElements) << what;
+    EXPECT_NE(stage.summary().find("took the gap fill"), std::string::npos) << stage.summary();
+  }
+}
+
 TEST_F(HydroTest, OffsetPutsTheSceneIntoTheFilesCoordinates) {
   // A storm file in a tank's coordinates (still water with its surface at z = 0 over x in
   // [-10, 10] m, a linear-in-x pressure added so that the position along x matters) and two

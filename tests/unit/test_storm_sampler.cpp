@@ -259,6 +259,90 @@ TEST_F(StormSamplerTest, CornersWithoutDataAreDroppedAndTheRestRenormalised) {
   EXPECT_NEAR(near.p, f.p(h.x[2], h.z[1], 0), 1e-6);
 }
 
+TEST_F(StormSamplerTest, GapFillIsStillWaterUnderTheFreeSurfaceMovingWithTheNearestWetData) {
+  // 5 x 8 voxels (z from -3 to -1.25 m), still water level -2 m; the block ix 3..4, iz 4..7 has no
+  // data. Water (alpha 1) only below z = -2.6 m in the file's voxels, so in column 4 the nearest
+  // voxels with data to the block (iz 3, 2: z -2.25, -2.5) are dry and the fill's flow comes from
+  // iz 1 (z -2.75). Fields linear in t, eta linear in x and t: the fill is exact.
+  auto h = makeHeader(5, 8);
+  h.stillWaterLevel = -2.0;
+  h.waterDensity = 1025.0;
+  h.gravity = 9.81;
+  const auto at = [&](std::size_t ix, std::size_t iz) { return iz * h.nx() + ix; };
+  for (std::size_t ix = 3; ix <= 4; ++ix) {
+    for (std::size_t iz = 4; iz <= 7; ++iz) {
+      h.samples[at(ix, iz)] = 0;
+    }
+  }
+  auto f = linearFields();
+  f.alpha = [](double, double z, double) { return z < -2.6 ? 1.0 : 0.0; };
+  f.eta = [](double x, double, double t) { return 0.1 * (x - 13.0) + 0.2 + 0.05 * (t - 100.0); };
+  const auto times = recordTimes(3);
+  StormReader reader(write(h, f, times));
+  StormSampler sampler(reader);
+  EXPECT_TRUE(sampler.hasGaps());
+  const double t = 0.5 * (times[0] + times[1]);
+  sampler.setTime(t);
+  const double rhoG = 1025.0 * 9.81;
+
+  // Wet: x 14.1 (between columns 3 and 4), z -1.9 (between iz 4 and 5): all four corners empty,
+  // all below the surface; the fill is linear in x and z, so its bilinear value is exact: the
+  // hydrostatic pressure under the surface at -2 + eta(14.1, t).
+  const double x = 14.1, z = -1.9;
+  const double surface = -2.0 + f.eta(x, 0.0, t);
+  ASSERT_LT(z, surface);
+  EXPECT_FALSE(sampler.sample(x, z).valid); // sample() keeps its contract
+  const auto wet = sampler.sampleOrFill(x, z);
+  ASSERT_TRUE(wet.valid);
+  EXPECT_TRUE(wet.filled);
+  EXPECT_EQ(wet.alpha, 1.0);
+  EXPECT_NEAR(wet.p, rhoG * (surface - z), tolerance(rhoG));
+  // Each corner moves with iz 1 of its column; between the columns, linearly.
+  EXPECT_NEAR(wet.u, f.u(x, h.z[1], t), tolerance(1.0));
+  EXPECT_NEAR(wet.v, f.v(x, h.z[1], t), tolerance(1.0));
+  EXPECT_NEAR(wet.w, f.w(x, h.z[1], t), tolerance(1.0));
+  const auto rate = sampler.rateOrFill(x, z);
+  ASSERT_TRUE(rate.valid && rate.filled);
+  EXPECT_NEAR(rate.p, rhoG * 0.05, tolerance(rhoG));
+  EXPECT_NEAR(rate.u, -0.02, kExact);
+  EXPECT_NEAR(rate.v, 0.01, kExact);
+  EXPECT_NEAR(rate.w, 0.03, kExact);
+
+  // Dry: above the surface in the same block: air, no flow.
+  const auto dry = sampler.sampleOrFill(x, -1.3);
+  ASSERT_GT(-1.3, -2.0 + f.eta(x, 0.0, t));
+  EXPECT_TRUE(dry.valid && dry.filled);
+  EXPECT_EQ(dry.alpha, 0.0);
+  EXPECT_EQ(dry.p, 0.0);
+  EXPECT_EQ(dry.u, 0.0);
+
+  // Half data, half fill: between iz 3 (data) and iz 4 (empty) of columns 3 and 4, each corner
+  // weighted as bilinear interpolation weights it (no renormalisation).
+  {
+    const double xm = 14.1, zm = -2.1, tx = (xm - h.x[3]) / h.dx(), tz = (zm - h.z[3]) / h.dz();
+    const auto fillP = [&](std::size_t ix) { return rhoG * (-2.0 + f.eta(h.x[ix], 0.0, t) - h.z[4]); };
+    const double expected = (1 - tx) * (1 - tz) * f.p(h.x[3], h.z[3], t) + tx * (1 - tz) * f.p(h.x[4], h.z[3], t) +
+                            (1 - tx) * tz * fillP(3) + tx * tz * fillP(4);
+    const auto mixed = sampler.sampleOrFill(xm, zm);
+    EXPECT_TRUE(mixed.valid && mixed.filled);
+    EXPECT_NEAR(mixed.p, expected, tolerance(expected));
+    EXPECT_NEAR(mixed.alpha, tz, kExact); // data corners dry (z > -2.6), filled ones wet
+  }
+
+  // With data at every corner the file's value, bit for bit; outside the grid nothing.
+  const double xd = 0.5 * (h.x[0] + h.x[1]), zd = -2.1;
+  const auto data = sampler.sampleOrFill(xd, zd);
+  EXPECT_FALSE(data.filled);
+  EXPECT_EQ(data.p, sampler.sample(xd, zd).p);
+  EXPECT_EQ(data.u, sampler.sample(xd, zd).u);
+  EXPECT_FALSE(sampler.sampleOrFill(h.x.back() + h.dx(), z).valid);
+  EXPECT_FALSE(sampler.rateOrFill(std::nan(""), z).valid);
+
+  // A file with data everywhere has no gaps.
+  StormReader full(write(makeHeader(), linearFields(), times));
+  EXPECT_FALSE(StormSampler(full).hasGaps());
+}
+
 TEST_F(StormSamplerTest, SetTimeOutsideTheRecordsThrowsNamingFileAndRange) {
   const auto h = makeHeader();
   const auto times = recordTimes(4);
