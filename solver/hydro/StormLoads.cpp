@@ -138,9 +138,10 @@ void StormLoads::initialise(const simulation::World& world) {
   if (outsideGrid > 0) {
     log->warn("{} of {} loaded bodies have their centroid outside the storm grid of '{}' (x {} .. {} m, z {} .. {} m; "
               "the loaded centroids span x {:.4g} .. {:.4g} m, z {:.4g} .. {:.4g} m in the file's coordinates, "
-              "hydro.storm.offset = [{}, {}] m): their parts beyond the grid take the flow at its edge, and a body "
-              "wholly outside gets no hydrodynamic load; if the scene and the "
-              "tank have different origins, set hydro.storm.offset to the file's (x, z) of the scene's origin",
+              "hydro.storm.offset = [{}, {}] m): beyond the grid they take the flow of its edge (held along x, "
+              "continued hydrostatically along z), which is right for units just beyond it (fallen off the toe) "
+              "and only buoyancy far away; if the scene and the tank have different origins, set "
+              "hydro.storm.offset to the file's (x, z) of the scene's origin",
               outsideGrid, loadedCount, reader_->path(), gridMin_[0], gridMax_[0], gridMin_[1], gridMax_[1],
               spanMin.x(), spanMax.x(), spanMin.y(), spanMax.y(), settings_.offsetX, settings_.offsetZ);
   }
@@ -312,7 +313,7 @@ std::string StormLoads::summary() const {
   const auto& c = counters_;
   if (c.bodyEvaluationsTotal == 0) return {};
   std::string text = fmt::format("hydro: {} load updates; {} of {} unit evaluations skipped ({:.1f} %: dry, above the "
-                                 "water, or outside the storm grid or its trunk section, no surface element sampled)",
+                                 "water, or beyond a bounded trunk section, no surface element sampled)",
                                  c.updates, c.skippedTotal, c.bodyEvaluationsTotal,
                                  100.0 * static_cast<double>(c.skippedTotal) /
                                      static_cast<double>(c.bodyEvaluationsTotal));
@@ -342,15 +343,14 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   const Vec3 x = bodies.position(b) + offset_; // in the storm file's coordinates
   const double r = s * shape.radius;
   const storm::StormHeader& h = reader_->header();
-  // Cheap rejections before any element is touched: the body's box against the grid and, for a
-  // file bounded along y, the trunk (such a unit counts as skipped: outside the storm's grid)...
-  if (x.x() + r < gridMin_[0] || x.x() - r > gridMax_[0] || x.z() + r < gridMin_[1] || x.z() - r > gridMax_[1] ||
-      (trunkBounded_ && (x.y() + r < trunkMin_ || x.y() - r > trunkMax_))) {
+  // Cheap rejections before any element is touched: for a file bounded along y, the trunk (a unit
+  // wholly beyond its ends counts as skipped: no flow was simulated there)...
+  if (trunkBounded_ && (x.y() + r < trunkMin_ || x.y() - r > trunkMax_)) {
     skipped = 1;
     return;
   }
-  // ... and against the highest free surface of the columns it spans (one column more on each side:
-  // the sampler interpolates between neighbouring columns).
+  // ... and the highest free surface of the columns it spans (one column more on each side: the
+  // sampler interpolates between neighbouring columns; beyond the grid, the edge column's).
   {
     const double dx = h.dx();
     const auto last = static_cast<double>(h.nx() - 1);
@@ -385,18 +385,16 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   Vec3 forceBody = Vec3::Zero(), torqueBody = Vec3::Zero(), velocitySum = Vec3::Zero(), rateSum = Vec3::Zero();
   double wetArea = 0.0, rateArea = 0.0;
   std::uint32_t sampled = 0, wetElements = 0, filledElements = 0;
-  // Elements beyond the grid's outermost voxel centres (in x or z), or beyond a bounded trunk's
-  // ends in y (the fields are y-averaged: they do not depend on y), take the flow held at the
-  // grid's edge. The water does not end where the sampling box does: a unit reaching out of the
-  // box with its outer elements unloaded would be pushed out by the unbalanced pressure of the
-  // rest (p A, several times its weight a few metres down). Wholly outside, it was skipped above.
-  // For the same reason elements in voxels without data (files sampled on the unit surfaces) take
-  // the gap fill, still water under the column's free surface, not atmospheric pressure.
-  const double xLo = h.x.front(), xHi = h.x.back(), zLo = h.z.front(), zHi = h.z.back();
+  // The water does not end where the sampling box does, nor where a 3D tank's file has data.
+  // Elements beyond the grid's outermost columns take the edge column's flow, beyond its outermost
+  // rows the edge row's pressure continued hydrostatically, beyond a bounded trunk's ends in y the
+  // section's (the fields are y-averaged: they do not depend on y), and in voxels without data the
+  // gap fill (still water under the column's free surface): leaving any of them atmospheric, the
+  // pressure of the rest would push the unit out with p A, several times its weight a few metres
+  // down (docs/theory.md, "Elements beyond the sampling box").
   for (std::size_t e = 0; e < el.size(); ++e) {
     const Vec3 c = x + scaledRotation * el.centroid[e];
-    const double cx = std::clamp(c.x(), xLo, xHi), cz = std::clamp(c.z(), zLo, zHi);
-    const storm::FlowSample f = sampler_->sampleOrFill(cx, cz);
+    const storm::FlowSample f = sampler_->sampleExtended(c.x(), c.z());
     ++sampled;
     if (!f.valid || f.alpha < wetAlpha) {
       continue; // atmospheric: gauge pressure 0
@@ -410,7 +408,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
     wetArea += a;
     velocitySum += a * Vec3(f.u, f.v, f.w);
     if (addedMass) {
-      const storm::FlowSample dudt = sampler_->rateOrFill(cx, cz);
+      const storm::FlowSample dudt = sampler_->rateExtended(c.x(), c.z());
       if (dudt.valid) {
         rateSum += a * Vec3(dudt.u, dudt.v, dudt.w);
         rateArea += a;

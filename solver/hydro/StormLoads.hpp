@@ -31,11 +31,13 @@
 /// linearly (Interpolate). Drag and added mass are evaluated at every force evaluation from the held
 /// quantities and the bodies' current velocities and contact forces.
 ///
+/// Beyond the grid the flow goes on (StormSampler::sampleExtended): the edge column's is held in
+/// x, the edge row's pressure continued hydrostatically in z; voxels without data take the gap fill.
+///
 /// Cost: fixed bodies and bodies the `bodies` filter excludes are never touched. At an update, a
-/// loaded body whose box (centroid +- scale x shape radius) lies outside the grid's x or z extent,
-/// outside the trunk's y range (bounded files only), or wholly above the highest free surface of
-/// the columns it spans (plus a margin of two voxel heights) is skipped before any element is
-/// sampled. The per-body work runs in parallel (OpenMP), each body writing only its own slot: the
+/// loaded body whose box (centroid +- scale x shape radius) lies outside the trunk's y range
+/// (bounded files only) or wholly above the highest free surface of the columns it spans (plus a
+/// margin of two voxel heights) is skipped before any element is sampled. The per-body work runs in parallel (OpenMP), each body writing only its own slot: the
 /// result does not depend on the thread count.
 
 #include "hydro/HydroSettings.hpp"
@@ -79,7 +81,7 @@ struct AppliedLoad {
 struct StormLoadCounters {
   std::size_t loadedBodies = 0;      ///< bodies that take storm loads (the filter, not fixed) (unit: -)
   std::size_t evaluatedBodies = 0;   ///< loaded bodies whose elements were sampled (unit: -)
-  /// Loaded bodies skipped before their elements: outside the grid or the trunk, or dry (unit: -).
+  /// Loaded bodies skipped before their elements: beyond a bounded trunk, or dry (unit: -).
   std::size_t skippedBodies = 0;
   std::size_t evaluatedElements = 0; ///< elements sampled (both evaluations when Interpolate starts) (unit: -)
   std::size_t wetElements = 0;       ///< of which wet (same) (unit: -)

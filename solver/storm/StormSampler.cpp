@@ -182,12 +182,44 @@ FlowSample StormSampler::interpolate(double x, double z, bool rate) const {
   return out;
 }
 
-FlowSample StormSampler::sampleOrFill(double x, double z) const {
-  return hasGaps_ ? withFill(x, z, false) : sample(x, z);
-}
+FlowSample StormSampler::sampleExtended(double x, double z) const { return extended(x, z, false); }
 
-FlowSample StormSampler::rateOrFill(double x, double z) const {
-  return hasGaps_ ? withFill(x, z, true) : rate(x, z);
+FlowSample StormSampler::rateExtended(double x, double z) const { return extended(x, z, true); }
+
+FlowSample StormSampler::extended(double x, double z, bool rate) const {
+  const auto& h = reader_.header();
+  if (std::isnan(x) || std::isnan(z)) {
+    return {};
+  }
+  // Beyond the outermost columns the edge column's flow; beyond the outermost rows the edge row's,
+  // continued hydrostatically below.
+  const double cx = std::clamp(x, h.x.front(), h.x.back());
+  const double cz = std::clamp(z, h.z.front(), h.z.back());
+  const auto at = [&](bool r) { return hasGaps_ ? withFill(cx, cz, r) : interpolate(cx, cz, r); };
+  FlowSample out = at(rate);
+  if (cz == z) {
+    return out;
+  }
+  const double rhoG = h.waterDensity * h.gravity;
+  if (z < cz) {
+    // Below the bottom row: deeper by (cz - z) in the same water; the added pressure does not change in time.
+    if (!rate) {
+      out.p += rhoG * (cz - z);
+    }
+    return out;
+  }
+  // Above the top row: the pressure falls by rho g per metre; where it is gone the point is in air.
+  const FlowSample value = rate ? at(false) : out;
+  if (value.p - rhoG * (z - cz) <= 0.0) {
+    FlowSample air;
+    air.valid = true;
+    air.filled = out.filled;
+    return air;
+  }
+  if (!rate) {
+    out.p -= rhoG * (z - cz);
+  }
+  return out;
 }
 
 FlowSample StormSampler::withFill(double x, double z, bool rate) const {

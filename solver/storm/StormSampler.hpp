@@ -11,11 +11,14 @@
 ///  - farther out the point is outside the grid: valid = false;
 ///  - corners in voxels without data (samples = 0) are dropped and the remaining weights
 ///    renormalised; with no corner left, valid = false;
-///  - sampleOrFill() / rateOrFill() (the solver's loads) instead give every corner without data
-///    the gap fill at its centre: still water under the column's free surface (hydrostatic p,
-///    alpha 1; air above it) moving with the nearest wet voxel with data of the column. Files
+///  - sampleExtended() / rateExtended() (the solver's loads) instead give every corner without
+///    data the gap fill at its centre: still water under the column's free surface (hydrostatic
+///    p, alpha 1; air above it) moving with the nearest wet voxel with data of the column. Files
 ///    sampled on the unit surfaces (seed 000's 3D tanks) have no data away from the armour layer,
 ///    where a displaced unit can go; the fill keeps the field continuous and exact in still water.
+///    They also answer beyond the grid, where the water goes on: beyond the outermost columns the
+///    flow of the edge column is held, beyond the outermost rows the pressure goes on
+///    hydrostatically from the edge row.
 ///
 /// Wave phase for the variability model: at each x column the zero crossings of eta(t) split the
 /// record into half waves, numbered from 0; a half wave with eta > 0 is a crest, else a trough.
@@ -40,7 +43,7 @@ struct FlowSample {
   double w = 0.0;
   double alpha = 0.0;
   bool valid = false;  ///< false: outside the grid or no data around the point (values are 0)
-  bool filled = false; ///< sampleOrFill()/rateOrFill(): some weight fell on the gap fill
+  bool filled = false; ///< sampleExtended()/rateExtended(): some weight fell on the gap fill
 };
 
 /// Where a point is in the wave cycle at its x.
@@ -65,16 +68,23 @@ public:
   /// Time derivative of the velocity at (x, z): the slope between the two bracketing records
   /// (unit: m/s^2; the local derivative du/dt, not the material derivative).
   [[nodiscard]] FlowSample rate(double x, double z) const;
-  /// sample(), but a corner without data takes the gap fill at its voxel centre (x_i, z_k)
-  /// instead of being dropped (filled = true when one with weight did): with the column's free
-  /// surface zs = still water level + eta_i(t), below zs alpha = 1, p = rho g (zs - z_k) and the
-  /// velocity of the nearest voxel with data of the column (in z) that is wet (alpha >= 0.5; none:
-  /// 0); above zs alpha = p = 0 and no velocity. Every point inside the grid is valid; outside it,
-  /// valid = false as sample(). A file without gaps gives sample()'s values bit for bit.
-  [[nodiscard]] FlowSample sampleOrFill(double x, double z) const;
-  /// rate() with the same corners: at a filled one d/dt of the source voxel's velocity and
-  /// rho g d(eta_i)/dt for p (alpha: 0).
-  [[nodiscard]] FlowSample rateOrFill(double x, double z) const;
+  /// The flow anywhere, for the solver's pressure integration (docs/theory.md, "Elements beyond
+  /// the sampling box" and "Elements in voxels without data"):
+  ///  - inside the outermost centres, sample(), but a corner without data takes the gap fill at its
+  ///    voxel centre (x_i, z_k) instead of being dropped (filled = true when one with weight did):
+  ///    with the column's free surface zs = still water level + eta_i(t), below zs alpha = 1,
+  ///    p = rho g (zs - z_k) and the velocity of the nearest voxel with data of the column (in z)
+  ///    that is wet (alpha >= 0.5; none: 0); above zs alpha = p = 0 and no velocity;
+  ///  - beyond the outermost columns (any distance), the value at the edge column (x clamped);
+  ///  - beyond the outermost rows, p(z) = p(z_edge) -/+ rho g (z - z_edge) with alpha and velocity
+  ///    of the edge row (down: p grows; up: it falls, and where it reaches 0 the point is in air).
+  /// valid = false only for a NaN coordinate. A file without gaps gives sample()'s values bit for
+  /// bit inside the outermost centres.
+  [[nodiscard]] FlowSample sampleExtended(double x, double z) const;
+  /// rate() with the same rules: at a filled corner d/dt of the source voxel's velocity and
+  /// rho g d(eta_i)/dt for p (alpha: 0); beyond the rows the edge row's rates (0 where the point
+  /// is in air).
+  [[nodiscard]] FlowSample rateExtended(double x, double z) const;
   /// Does the file have voxels without data (samples = 0)? (Then the gap fill can apply.)
   [[nodiscard]] bool hasGaps() const { return hasGaps_; }
   /// Free-surface elevation and wave phase at x, current time. Outside the x range: the edge column.
@@ -97,7 +107,9 @@ private:
 
   /// The gap fill at the centre of voxel (ix, iz); `rate`: its time derivative instead.
   [[nodiscard]] FlowSample fill(std::size_t ix, std::size_t iz, bool rate) const;
-  /// sampleOrFill() (rate = false) and rateOrFill().
+  /// sampleExtended() (rate = false) and rateExtended().
+  [[nodiscard]] FlowSample extended(double x, double z, bool rate) const;
+  /// Bilinear with the gap fill at the corners without data, (x, z) inside the outermost centres.
   [[nodiscard]] FlowSample withFill(double x, double z, bool rate) const;
   /// sample() (rate = false) and rate().
   [[nodiscard]] FlowSample interpolate(double x, double z, bool rate) const;

@@ -212,37 +212,50 @@ TEST_F(HydroTest, LinearPressureFieldIsIntegratedExactly) {
 
 TEST_F(HydroTest, UnitsReachingOutOfTheSamplingBoxKeepArchimedes) {
   // The water does not end where the storm file's box does. Units in still water reaching out of
-  // the grid (its edge x = 10 m; a Core-Loc scaled 1.3 centred on it, a cube half beyond it) and
-  // out of a bounded trunk (a cube centred on its end, y = 5 m) take the flow held at the edge on
-  // their outer elements: Archimedes (rho g V up, no horizontal force) to the bounds of
-  // ArchimedesOnSubmergedClosedUnits (0.5 %, 1e-3 rho g V); holding is exact here, the field not
-  // depending on x or y. Leaving the outer elements unloaded (as before) pushed the units out of
-  // the box with the pressure of the rest: 3.7 to 5.2 rho g V horizontally (measured).
+  // the grid or lying wholly beyond it take the edge column's flow along x, the edge row's pressure
+  // continued hydrostatically along z, and a bounded trunk's section flow along y: Archimedes (rho
+  // g V up, no horizontal force) to the bounds of ArchimedesOnSubmergedClosedUnits (0.5 %, 1e-3
+  // rho g V). Leaving the outer elements unloaded pushed the units out of the box with the pressure
+  // of the rest (3.7 to 5.2 rho g V horizontally, measured); holding the bottom row instead of
+  // continuing it, or skipping a unit wholly outside (the loose trunk's units fallen off the toe in
+  // front of the tank file's window), took their buoyancy.
   const std::string open = stillWater();
   const std::string trunk = file("short_trunk.nc");
   writeStorm(trunk, gridHeader(-5.0, 5.0, -10.0, 2.0, 0.5, 0.0, -5.0, 10.0), {0.0, 10.0}, hydrostatic(0.0), flat());
+  const std::string shallow = file("shallow.nc"); // rows from z = -6 m up: the seabed lies deeper
+  writeStorm(shallow, gridHeader(-10.0, 10.0, -6.0, 2.0, 0.5, 0.0), {0.0, 10.0}, hydrostatic(0.0), flat());
+  const std::string window = file("window.nc");   // rows up to z = -3 m only: the surface lies above
+  writeStorm(window, gridHeader(-10.0, 10.0, -12.0, -3.0, 0.5, 0.0), {0.0, 10.0}, hydrostatic(0.0), flat());
   struct Case {
     std::string storm, shape;
     Vec3 position;
     double scale;
+    double buoyancyFraction = 1.0;
   };
-  const std::vector<Case> cases = {{open, "coreloc", Vec3(10.0, 0.3, -5.0), 1.3},
-                                   {open, "cube", Vec3(10.3, 0.0, -4.0), 1.0},
-                                   {trunk, "cube", Vec3(0.0, 5.0, -4.0), 1.0}};
+  const std::vector<Case> cases = {{open, "coreloc", Vec3(10.0, 0.3, -5.0), 1.3},   // across the x edge
+                                   {open, "cube", Vec3(10.3, 0.0, -4.0), 1.0},      // half beyond it
+                                   {open, "coreloc", Vec3(14.0, 0.0, -5.0), 1.0},   // wholly beyond it
+                                   {trunk, "cube", Vec3(0.0, 5.0, -4.0), 1.0},      // across a trunk end
+                                   {shallow, "cube", Vec3(0.0, 0.0, -6.0), 1.0},    // across the bottom
+                                   {shallow, "dolos", Vec3(-2.0, 0.0, -9.0), 1.0},  // wholly below it
+                                   {window, "cube", Vec3(0.0, 0.0, -1.5), 1.0},     // above the top, wet
+                                   {window, "cube", Vec3(3.0, 0.0, 0.0), 1.0, 0.5}, // half out of the water
+                                   {window, "cube", Vec3(0.0, 0.0, 3.0), 1.0, 0.0}}; // dry
   for (const Case& c : cases) {
     Scene scene;
-    const BodyId b = scene.add(c.shape, c.position, someOrientation(2), c.scale);
+    const BodyId b = scene.add(c.shape, c.position, c.buoyancyFraction == 0.5 ? Quat::Identity() : someOrientation(2),
+                               c.scale);
     StormLoads stage(scene.world, settingsFor(c.storm), "all", c.storm);
     const Loads l = applyAt(stage, scene.world, 0.0);
     const double buoyancy = kRho * kG * std::pow(c.scale, 3);
-    const std::string what = c.shape + " at " + fmt::format("({}, {}, {})", c.position.x(), c.position.y(),
-                                                             c.position.z());
-    RecordProperty(c.shape + "_" + std::to_string(static_cast<int>(c.position.y())) + "_horizontal_over_buoyancy",
+    const std::string what = c.shape + " at " + fmt::format("({}, {}, {}) in {}", c.position.x(), c.position.y(),
+                                                             c.position.z(), fs::path(c.storm).filename().string());
+    RecordProperty(fmt::format("{}_{}_{}_horizontal_over_buoyancy", c.shape, c.position.x(), c.position.z()),
                    fmt::format("{:.3e}", std::hypot(l.force[b].x(), l.force[b].y()) / buoyancy));
-    EXPECT_NEAR(l.force[b].z(), buoyancy, 5e-3 * buoyancy) << what;
+    EXPECT_NEAR(l.force[b].z(), c.buoyancyFraction * buoyancy, 5e-3 * buoyancy) << what;
     EXPECT_LT(std::hypot(l.force[b].x(), l.force[b].y()), 1e-3 * buoyancy) << what;
     EXPECT_LT(l.torque[b].norm(), 1e-3 * buoyancy * c.scale) << what;
-    EXPECT_EQ(stage.counters().skippedBodies, 0u) << what;
+    EXPECT_EQ(stage.counters().skippedBodies, c.buoyancyFraction == 0.0 ? 1u : 0u) << what;
   }
 }
 
@@ -296,7 +309,8 @@ TEST_F(HydroTest, OffsetPutsTheSceneIntoTheFilesCoordinates) {
   // scenes: one placed in the tank's coordinates, one whose origin lies at the tank's
   // (x, z) = (-104, -3). With hydro.storm.offset = [-104, -3] the second unit, at scene (104 + x,
   // z + 3), takes the first one's load exactly (same samples, same arithmetic: 1e-12); without
-  // it, it lies outside the grid and takes none (skipped).
+  // it, it lies beyond the grid's x edge and takes the edge column's flow: buoyancy, but none of
+  // the horizontal pressure gradient.
   const std::string path = file("tank.nc");
   writeStorm(path, gridHeader(-10.0, 10.0, -12.0, 2.0, 0.5, 0.0), {0.0, 10.0},
              [](double, double x, double z) {
@@ -326,10 +340,10 @@ TEST_F(HydroTest, OffsetPutsTheSceneIntoTheFilesCoordinates) {
   EXPECT_EQ(stage.evaluatedElements(b), tankStage.evaluatedElements(a));
 
   StormLoads unshifted(scene.world, settingsFor(path), "all", path);
-  const Loads none = applyAt(unshifted, scene.world, 0.0);
-  EXPECT_EQ(none.force[b], Vec3::Zero());
-  EXPECT_EQ(unshifted.evaluatedElements(b), 0u);
-  EXPECT_EQ(unshifted.counters().skippedBodies, 1u);
+  const Loads held = applyAt(unshifted, scene.world, 0.0);
+  EXPECT_NEAR(held.force[b].z(), expected.force[a].z(), 5e-3 * expected.force[a].z());
+  EXPECT_LT(std::abs(held.force[b].x()), 1e-3 * std::abs(expected.force[a].x()));
+  EXPECT_EQ(unshifted.counters().skippedBodies, 0u);
 }
 
 TEST_F(HydroTest, FileUniformAlongYLoadsUnitsBeyondItsTrunkRange) {
@@ -376,7 +390,7 @@ TEST_F(HydroTest, FileUniformAlongYLoadsUnitsBeyondItsTrunkRange) {
 // ================================================================================================
 // The cost rules
 
-TEST_F(HydroTest, DryAndOutOfGridUnitsCostNothing) {
+TEST_F(HydroTest, DryUnitsCostNothingAndUnitsBeyondTheGridAreLoaded) {
   const std::string path = stillWater();
   Scene scene;
   const BodyId wet = scene.add("coreloc", Vec3(0.0, 0.0, -5.0));
@@ -397,16 +411,19 @@ TEST_F(HydroTest, DryAndOutOfGridUnitsCostNothing) {
   EXPECT_FALSE(stage.loaded(fixed)) << "fixed bodies never take loads";
   EXPECT_GT(stage.evaluatedElements(wet), 1000u);
   EXPECT_NEAR(l.force[wet].z(), kRho * kG, 0.005 * kRho * kG);
-  for (const BodyId b : {dry, outside, filtered, fixed}) {
+  for (const BodyId b : {dry, filtered, fixed}) {
     EXPECT_EQ(stage.evaluatedElements(b), 0u) << b;
     EXPECT_EQ(l.force[b], Vec3::Zero()) << b;
     EXPECT_EQ(l.torque[b], Vec3::Zero()) << b;
   }
+  // 20 m beyond the grid's x edge the water goes on: the edge column's still water.
+  EXPECT_EQ(stage.evaluatedElements(outside), stage.evaluatedElements(wet));
+  EXPECT_NEAR(l.force[outside].z(), kRho * kG, 0.005 * kRho * kG);
   const auto& c = stage.counters();
   EXPECT_EQ(c.loadedBodies, 3u);
-  EXPECT_EQ(c.skippedBodies, 2u);
-  EXPECT_EQ(c.evaluatedBodies, 1u);
-  EXPECT_EQ(c.evaluatedElements, stage.evaluatedElements(wet));
+  EXPECT_EQ(c.skippedBodies, 1u);
+  EXPECT_EQ(c.evaluatedBodies, 2u);
+  EXPECT_EQ(c.evaluatedElements, stage.evaluatedElements(wet) + stage.evaluatedElements(outside));
 }
 
 TEST_F(HydroTest, StormTimeOutsideTheFileIsAnInputErrorNamingFileAndRange) {

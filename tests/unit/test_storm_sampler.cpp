@@ -292,7 +292,7 @@ TEST_F(StormSamplerTest, GapFillIsStillWaterUnderTheFreeSurfaceMovingWithTheNear
   const double surface = -2.0 + f.eta(x, 0.0, t);
   ASSERT_LT(z, surface);
   EXPECT_FALSE(sampler.sample(x, z).valid); // sample() keeps its contract
-  const auto wet = sampler.sampleOrFill(x, z);
+  const auto wet = sampler.sampleExtended(x, z);
   ASSERT_TRUE(wet.valid);
   EXPECT_TRUE(wet.filled);
   EXPECT_EQ(wet.alpha, 1.0);
@@ -301,7 +301,7 @@ TEST_F(StormSamplerTest, GapFillIsStillWaterUnderTheFreeSurfaceMovingWithTheNear
   EXPECT_NEAR(wet.u, f.u(x, h.z[1], t), tolerance(1.0));
   EXPECT_NEAR(wet.v, f.v(x, h.z[1], t), tolerance(1.0));
   EXPECT_NEAR(wet.w, f.w(x, h.z[1], t), tolerance(1.0));
-  const auto rate = sampler.rateOrFill(x, z);
+  const auto rate = sampler.rateExtended(x, z);
   ASSERT_TRUE(rate.valid && rate.filled);
   EXPECT_NEAR(rate.p, rhoG * 0.05, tolerance(rhoG));
   EXPECT_NEAR(rate.u, -0.02, kExact);
@@ -309,7 +309,7 @@ TEST_F(StormSamplerTest, GapFillIsStillWaterUnderTheFreeSurfaceMovingWithTheNear
   EXPECT_NEAR(rate.w, 0.03, kExact);
 
   // Dry: above the surface in the same block: air, no flow.
-  const auto dry = sampler.sampleOrFill(x, -1.3);
+  const auto dry = sampler.sampleExtended(x, -1.3);
   ASSERT_GT(-1.3, -2.0 + f.eta(x, 0.0, t));
   EXPECT_TRUE(dry.valid && dry.filled);
   EXPECT_EQ(dry.alpha, 0.0);
@@ -323,24 +323,72 @@ TEST_F(StormSamplerTest, GapFillIsStillWaterUnderTheFreeSurfaceMovingWithTheNear
     const auto fillP = [&](std::size_t ix) { return rhoG * (-2.0 + f.eta(h.x[ix], 0.0, t) - h.z[4]); };
     const double expected = (1 - tx) * (1 - tz) * f.p(h.x[3], h.z[3], t) + tx * (1 - tz) * f.p(h.x[4], h.z[3], t) +
                             (1 - tx) * tz * fillP(3) + tx * tz * fillP(4);
-    const auto mixed = sampler.sampleOrFill(xm, zm);
+    const auto mixed = sampler.sampleExtended(xm, zm);
     EXPECT_TRUE(mixed.valid && mixed.filled);
     EXPECT_NEAR(mixed.p, expected, tolerance(expected));
     EXPECT_NEAR(mixed.alpha, tz, kExact); // data corners dry (z > -2.6), filled ones wet
   }
 
-  // With data at every corner the file's value, bit for bit; outside the grid nothing.
+  // With data at every corner the file's value, bit for bit; a NaN coordinate gives nothing.
   const double xd = 0.5 * (h.x[0] + h.x[1]), zd = -2.1;
-  const auto data = sampler.sampleOrFill(xd, zd);
+  const auto data = sampler.sampleExtended(xd, zd);
   EXPECT_FALSE(data.filled);
   EXPECT_EQ(data.p, sampler.sample(xd, zd).p);
   EXPECT_EQ(data.u, sampler.sample(xd, zd).u);
-  EXPECT_FALSE(sampler.sampleOrFill(h.x.back() + h.dx(), z).valid);
-  EXPECT_FALSE(sampler.rateOrFill(std::nan(""), z).valid);
+  EXPECT_FALSE(sampler.rateExtended(std::nan(""), z).valid);
+  EXPECT_FALSE(sampler.sampleExtended(xd, std::nan("")).valid);
 
   // A file with data everywhere has no gaps.
   StormReader full(write(makeHeader(), linearFields(), times));
   EXPECT_FALSE(StormSampler(full).hasGaps());
+}
+
+TEST_F(StormSamplerTest, BeyondTheGridTheEdgeColumnIsHeldAndTheEdgeRowGoesOnHydrostatically) {
+  // The water goes on beyond the sampling box: any distance beyond the outermost columns gives the
+  // edge column's flow; beyond the outermost rows the pressure changes by rho g per metre from the
+  // edge row's (alpha and velocity held), and above the top row it reaches air where it is gone.
+  auto h = makeHeader();
+  h.waterDensity = 1025.0;
+  h.gravity = 9.81;
+  const double rhoG = 1025.0 * 9.81;
+  auto f = linearFields();
+  f.p = [](double x, double z, double t) { return 20000.0 + 100.0 * x - 300.0 * z + 50.0 * (t - 100.0); };
+  f.alpha = [](double, double, double) { return 1.0; };
+  const auto times = recordTimes(3);
+  StormReader reader(write(h, f, times));
+  StormSampler sampler(reader);
+  const double t = 0.3 * times[0] + 0.7 * times[1];
+  sampler.setTime(t);
+  const double zMid = 0.5 * (h.z[1] + h.z[2]);
+  for (const double x : {h.x.front() - 0.1, h.x.front() - 40.0}) {
+    const auto s = sampler.sampleExtended(x, zMid);
+    ASSERT_TRUE(s.valid) << x;
+    EXPECT_EQ(s.p, sampler.sample(h.x.front(), zMid).p) << x;
+    EXPECT_EQ(s.u, sampler.sample(h.x.front(), zMid).u) << x;
+  }
+  EXPECT_EQ(sampler.sampleExtended(h.x.back() + 1e3, zMid).w, sampler.sample(h.x.back(), zMid).w);
+  const double x = 0.5 * (h.x[1] + h.x[2]);
+  // Below the bottom row: 2 m deeper, rho g 2 m more; the rate is the edge row's.
+  const auto below = sampler.sampleExtended(x, h.z.front() - 2.0);
+  const auto edge = sampler.sample(x, h.z.front());
+  EXPECT_NEAR(below.p, edge.p + rhoG * 2.0, tolerance(below.p));
+  EXPECT_EQ(below.u, edge.u);
+  EXPECT_EQ(below.alpha, 1.0);
+  EXPECT_NEAR(sampler.rateExtended(x, h.z.front() - 2.0).p, 50.0, 1e-9);
+  // Above the top row: less by rho g per metre while any is left, then air.
+  const double top = h.z.back();
+  const double pTop = sampler.sample(x, top).p;
+  const double reach = pTop / rhoG; // where the continued pressure reaches 0
+  ASSERT_GT(reach, 1.0);
+  const auto above = sampler.sampleExtended(x, top + 0.5 * reach);
+  EXPECT_NEAR(above.p, 0.5 * pTop, tolerance(pTop));
+  EXPECT_EQ(above.alpha, 1.0);
+  const auto air = sampler.sampleExtended(x, top + 1.01 * reach);
+  EXPECT_TRUE(air.valid);
+  EXPECT_EQ(air.p, 0.0);
+  EXPECT_EQ(air.alpha, 0.0);
+  EXPECT_EQ(air.u, 0.0);
+  EXPECT_EQ(sampler.rateExtended(x, top + 1.01 * reach).u, 0.0);
 }
 
 TEST_F(StormSamplerTest, SetTimeOutsideTheRecordsThrowsNamingFileAndRange) {
