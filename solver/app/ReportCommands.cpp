@@ -713,11 +713,14 @@ void report(const ReportOptions& o) {
                            counted.nod, counted.damage, o.displacedDn, width, porosity);
   std::cout << fmt::format("  delta_rms {:.4g} m, max {:.3g} Dn, total {:.4g} m\n", disp.deltaRms, disp.maxDn,
                            disp.total);
-  // A period the record cannot give (too few waves, none in the title) is said to be unknown, not "nan".
-  const auto period = [](double v) { return std::isfinite(v) ? fmt::format("{:.3g} s", v) : std::string("unknown"); };
+  // A period the record cannot give (too few waves, none in the title) is said to be unknown, with
+  // the option that supplies it, not "nan".
+  const auto period = [](double v, const char* option) {
+    return std::isfinite(v) ? fmt::format("{:.3g} s", v) : fmt::format("unknown ({})", option);
+  };
   if (std::isfinite(hs))
-    std::cout << fmt::format("  storm Hs {:.3g} m ({}), Tm {} (--tm), Tp {}, Ns {:.3g}\n", hs, hsSource, period(tm),
-                             period(tp), ns);
+    std::cout << fmt::format("  storm Hs {:.3g} m ({}), Tm {}, Tp {}, Ns {:.3g}\n", hs, hsSource, period(tm, "--tm"),
+                             period(tp, "--tp"), ns);
   for (const FormulaResult& r : formulas) {
     std::string values;
     for (const auto& [k, v] : r.values) values += fmt::format(" {}={:.4g}", k, v);

@@ -30,6 +30,11 @@ grep -q "name: unitdrop" "$out/scene.yaml" || fail "could not add the falling un
 
 # The report: the scene is found from bodies.nc's history; units are all bodies named unit*.
 "$armour" --log-level warn report "$out/run" --units unit > "$out/report.txt" || fail "armour report failed: $(cat "$out/report.txt")"
+# The storm line: a regular 1.5 m, 6 s wave gives its periods in seconds (the fit: H1/3 1.5 m, Tm and
+# Tp within the record's resolution of 6 s); a period the record cannot give would read "unknown (--tm)".
+grep -qE "storm Hs 1\.5 m \(H1/3 of eta at the gauge\), Tm [56]\.[0-9]+ s, Tp [56]\.[0-9]+ s, Ns " "$out/report.txt" \
+  || fail "the storm line does not give Hs 1.5 m and both periods near 6 s: $(grep storm "$out/report.txt")"
+! grep -qi "nan" "$out/report.txt" || fail "the printed report says nan: $(grep -i nan "$out/report.txt")"
 for f in summary.json units.csv timeseries.csv storm.csv index.html plan.png elevation.png total_displacement.png \
          displacement_hist.png storm.png paraview_state.py; do
   [[ -s "$out/run/report/$f" ]] || fail "report/$f missing or empty"
