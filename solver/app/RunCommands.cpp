@@ -498,6 +498,12 @@ void runScene(const RunRequest& o) {
               100.0 * (1.0 - awakeBodySteps / movableBodySteps), awakeBodySteps / static_cast<double>(steps));
   for (const auto& stage : world.loadStages())
     if (const std::string s = stage->summary(); !s.empty()) log->info("{}", s);
+  // The step's stages (World::profile): where the wall time of the stepping went.
+  const std::string profile = world.profile().table(steps);
+  log->info("time step by stage ({} solver, {} steps):\n{}",
+            world.settings().solver == simulation::ContactSolverKind::Constraint ? "constraint" : "penalty", steps,
+            profile);
+  if (o.profile) std::cout << profile << std::flush;
   log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
             finalState.string(), checkpointPath.string());
   log->flush();
@@ -528,6 +534,7 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
       ->capture_default_str();
   run->add_option("-o,--output", o->output, "output folder, instead of the scene's output.folder");
   addSetOption(*run, o->sets);
+  run->add_flag("--profile", o->profile, "print the wall time of each stage of the time step at the end (also in run.log)");
   run->add_flag("--restart", o->restart,
                 "continue the run in the output folder from its checkpoint.nc (to the duration, which may be longer); "
                 "the scene may differ in duration and output settings only (docs/user-guide.md)");
@@ -551,6 +558,7 @@ void addRunCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   addSetOption(*storm, s->sets);
   storm->add_option("--variability-seed", s->variabilitySeed,
                     "seed of the storm's variability draws (a storm realisation), instead of the scene's");
+  storm->add_flag("--profile", s->profile, "print the wall time of each stage of the time step at the end (also in run.log)");
   storm->add_flag("--restart", s->restart, "continue from the output folder's checkpoint.nc (same scene and storm)");
   storm->callback([s, offset, stormDuration] {
     s->durationGiven = stormDuration->count() > 0;

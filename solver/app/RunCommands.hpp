@@ -28,6 +28,7 @@ struct RunRequest {
   int threads = 0;                 ///< OpenMP threads, 0 = OpenMP's default
   std::string output;              ///< overrides the scene's output folder when not empty
   bool restart = false;            ///< continue from <output>/checkpoint.nc
+  bool profile = false;            ///< print the per-stage wall-time table of the step at the end
   std::vector<std::string> sets;   ///< --set KEY=VALUE changes of the scene (io/SceneOverrides.hpp)
   // `armour storm`: the storm replayed on the scene (empty for `armour run`).
   std::string stormFile;           ///< the storm file (netCDF, docs/storm-file.md)

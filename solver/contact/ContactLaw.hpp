@@ -48,9 +48,13 @@ double restitutionOfClampedDashpot(double zeta);
 double dampingRatioFromRestitution(double restitution);
 
 /// What a point remembers between steps.
+/// The penalty law uses the spring; the constraint solver (ContactSolver.hpp) the impulses, its
+/// warm start. Both live here so that sleep islands and checkpoints see one contact history.
 struct PointHistory {
   Vec3 stretch = Vec3::Zero(); ///< tangential spring stretch s (unit: m), world frame
   bool sliding = false;        ///< true while the point slides (mu_d applies)
+  double normalImpulse = 0.0;  ///< constraint solver: normal impulse per substep (unit: N s)
+  Vec3 tangentImpulse = Vec3::Zero(); ///< constraint solver: friction impulse per substep, world (unit: N s)
 };
 
 /// One engaged sample point.

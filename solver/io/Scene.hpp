@@ -198,6 +198,21 @@ struct TimeStepSettings {
 /// Which contact model the narrow phase uses (docs/theory.md, "Contact law" and "FDEM potential contact").
 enum class ContactModel { LevelSet, Fdem };
 
+/// Which solver turns contacts into motion (docs/theory.md, "The constraint solver").
+enum class ContactSolver { Penalty, Constraint };
+
+/// contact.constraint: the constraint solver's settings (simulation::ConstraintSettings holds
+/// the defaults and their provenance).
+struct ConstraintSolverSettings {
+  double timeStep = 1.0 / 200.0;     ///< step with time_step: auto (unit: s)
+  std::size_t substeps = 4;          ///< unit: -
+  double dampingRatio = 10.0;         ///< of each contact point's spring (unit: -); Box2D v3's default
+  double pushSpeed = 3.0;            ///< largest speed of the overlap push-out (unit: m/s)
+  double restitutionThreshold = 0.2; ///< unit: m/s
+  double speculativeMargin = 0.05;   ///< unit: Dn
+  double patchAngle = 0.5;           ///< unit: rad
+};
+
 /// Contact model and resolution, relative to each body's nominal diameter Dn = V^(1/3). The
 /// defaults are those of the contact stage (contact::SurfaceSampleSettings, contact::LevelSetSettings,
 /// contact::FdemMeshSettings).
@@ -206,6 +221,10 @@ struct ContactSettings {
   /// once bodies rest on bodies, no reach limit; docs/fidelity.md); fdem: Munjiza's potential over
   /// tetrahedral contact elements.
   ContactModel model = ContactModel::LevelSet;
+  /// penalty: the contact law's forces, explicit steps below the contact's stability limit;
+  /// constraint: impulses on reduced points, steps of 1/200 s (contact.constraint).
+  ContactSolver solver = ContactSolver::Penalty;
+  ConstraintSolverSettings constraint;
   /// fdem: tetrahedra per body before the deep ones are dropped (unit: -); seed 002: ~2500 per Core-Loc.
   std::size_t fdemElementsPerUnit = 2500;
   double sampleSpacing = 0.1;      ///< spacing of surface sample points / Dn (unit: -)

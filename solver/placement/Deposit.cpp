@@ -2,6 +2,7 @@
 #include "placement/Deposit.hpp"
 
 #include "contact/LevelSet.hpp"
+#include "contact/NarrowPhase.hpp"
 #include "contact/SurfaceSamples.hpp"
 #include "geometry/ConvexHull.hpp"
 
@@ -12,23 +13,24 @@
 namespace armour::placement {
 namespace {
 
-/// True when a sample of `probe` lies within `clearance` of `target`'s surface or inside it.
+/// The narrow phase's view of a placed body (its shape's samples and level set).
+contact::ContactShape contactShape(const Placed& u) {
+  return {u.shape->levelSet.get(), u.shape->samples.get(), &u.shape->buckets, u.shape->radius};
+}
+
+contact::ContactPose contactPose(const Placed& u) {
+  contact::ContactPose p;
+  p.position = u.x;
+  p.rotation = u.R;
+  p.scale = u.scale;
+  return p;
+}
+
+/// True when a sample of `probe` lies within `clearance` of `target`'s surface or inside it: the
+/// narrow phase's own touch test.
 bool samplesTouch(const Placed& probe, const Placed& target, double clearance) {
-  const auto& ls = *target.shape->levelSet;
-  const double reach = target.radius + clearance;
-  const Vec3 grow = Vec3::Constant(clearance / target.scale + std::sqrt(3.0) * ls.cellSize());
-  const Vec3 lo = ls.meshBounds().min - grow, hi = ls.meshBounds().max + grow;
-  const Mat3 toTarget = target.R.transpose() * probe.R * (probe.scale / target.scale);
-  const Vec3 offset = target.R.transpose() * (probe.x - target.x) / target.scale;
-  const Vec3 probeInTarget = probe.x - target.x;
-  for (const Vec3& p : probe.shape->samples->positions()) {
-    const Vec3 X = probeInTarget + probe.R * (probe.scale * p);
-    if (X.squaredNorm() > reach * reach) continue;
-    const Vec3 L = toTarget * p + offset;
-    if ((L.array() < lo.array()).any() || (L.array() > hi.array()).any()) continue;
-    if (ls.value(L) * target.scale < clearance) return true;
-  }
-  return false;
+  return contact::anySampleWithin(contactShape(probe), contactPose(probe), contactShape(target), contactPose(target),
+                                  clearance);
 }
 
 bool touches(const Placed& a, const Placed& b, double clearance) {

@@ -439,6 +439,11 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
                                "friction spring: tangential stretch, world frame");
     const int sliding =
         define("contact_sliding", NC_UBYTE, {contactDim}, "1", "friction spring: sliding (1) or stuck (0)");
+    // The constraint solver's warm start (contact.solver: constraint); zero under the penalty solver.
+    const int normalImpulse = define("contact_normal_impulse", NC_DOUBLE, {contactDim}, "N s",
+                                     "constraint solver: normal impulse per substep (warm start)");
+    const int tangentImpulse = define("contact_tangent_impulse", NC_DOUBLE, {contactDim, vecDim}, "N s",
+                                      "constraint solver: friction impulse per substep, world frame (warm start)");
     // Optional texts: a char variable over its own length dimension, left out when empty.
     const auto defineText = [&](const char* name, const char* dimName, const std::string& text, const char* longName) {
       if (text.empty()) return -1;
@@ -517,8 +522,12 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
       std::vector<unsigned> firsts(m), seconds(m), keys(m);
       std::vector<double> stretches(3 * m);
       std::vector<unsigned char> slides(m);
+      std::vector<double> normals(m), tangents(3 * m);
       for (std::size_t k = 0; k < m; ++k) {
         const ContactPointState& p = s.contacts[k];
+        normals[k] = p.normalImpulse;
+        std::copy(p.tangentImpulse.data(), p.tangentImpulse.data() + 3,
+                  tangents.begin() + static_cast<std::ptrdiff_t>(3 * k));
         firsts[k] = p.first;
         seconds[k] = p.second;
         keys[k] = p.key;
@@ -532,6 +541,8 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
       put(key, keys);
       put(stretch, stretches);
       put(sliding, slides);
+      put(normalImpulse, normals);
+      put(tangentImpulse, tangents);
     }
     if (identity >= 0) {
       put(identity, c.sceneIdentity);
@@ -749,6 +760,14 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
   r.get("contact_key", r.variable("contact_key", NC_UINT, {contactDim}), m, keys);
   r.get("contact_stretch", r.variable("contact_stretch", NC_DOUBLE, {contactDim, vecDim}), 3 * m, stretches);
   r.get("contact_sliding", r.variable("contact_sliding", NC_UBYTE, {contactDim}), m, slides);
+  // Checkpoints written before the constraint solver have no impulses: zero (no warm start).
+  std::vector<double> normalImpulses(m, 0.0), tangentImpulses(3 * m, 0.0);
+  int unusedImpulse = -1;
+  if (nc_inq_varid(r.id(), "contact_normal_impulse", &unusedImpulse) == NC_NOERR) {
+    r.get("contact_normal_impulse", r.variable("contact_normal_impulse", NC_DOUBLE, {contactDim}), m, normalImpulses);
+    r.get("contact_tangent_impulse", r.variable("contact_tangent_impulse", NC_DOUBLE, {contactDim, vecDim}), 3 * m,
+          tangentImpulses);
+  }
   s.contacts.resize(m);
   for (std::size_t k = 0; k < m; ++k) {
     ContactPointState& p = s.contacts[k];
@@ -757,8 +776,10 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     p.key = keys[k];
     p.stretch = vec3(stretches, k);
     p.sliding = slides[k] != 0;
-    if (!p.stretch.allFinite()) {
-      r.fail("variable 'contact_stretch' of contact {} (body {}) is not finite: the checkpoint holds a state that had "
+    p.normalImpulse = normalImpulses[k];
+    p.tangentImpulse = vec3(tangentImpulses, k);
+    if (!p.stretch.allFinite() || !std::isfinite(p.normalImpulse) || !p.tangentImpulse.allFinite()) {
+      r.fail("variable 'contact_stretch' or an impulse of contact {} (body {}) is not finite: the checkpoint holds a state that had "
              "blown up; restart from an earlier checkpoint.nc or start the run anew",
              k, p.first);
     }

@@ -159,6 +159,16 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.maxOverlapPerDn = scene.contact.maxOverlap;
   w.contactModel = scene.contact.model == io::ContactModel::Fdem ? ContactModel::Fdem : ContactModel::LevelSet;
   w.fdem.elementsPerUnit = scene.contact.fdemElementsPerUnit;
+  w.solver = scene.contact.solver == io::ContactSolver::Constraint ? ContactSolverKind::Constraint
+                                                                   : ContactSolverKind::Penalty;
+  const io::ConstraintSolverSettings& cs = scene.contact.constraint;
+  w.constraint.timeStep = cs.timeStep;
+  w.constraint.substeps = static_cast<int>(cs.substeps);
+  w.constraint.dampingRatio = cs.dampingRatio;
+  w.constraint.pushSpeed = cs.pushSpeed;
+  w.constraint.restitutionThreshold = cs.restitutionThreshold;
+  w.constraint.speculativeMargin = cs.speculativeMargin;
+  w.constraint.patchAngle = cs.patchAngle;
   w.sleep.enabled = scene.sleep.enabled;
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;

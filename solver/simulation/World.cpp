@@ -7,7 +7,6 @@
 //   WorldSleep.cpp     contact islands: sleeping and waking
 //   WorldEnergy.cpp    the energy guard rail
 //   WorldState.cpp     captureState / restoreState (checkpoints)
-//   WorldBuckets.*     the coarse grid of each shape's surface samples
 //   WorldInternal.hpp  flag bits shared by these files
 #include "simulation/World.hpp"
 
@@ -16,7 +15,6 @@
 #include "core/Log.hpp"
 #include "dynamics/Integrator.hpp"
 #include "geometry/ConvexHull.hpp"
-#include "simulation/WorldBuckets.hpp"
 
 #include <fmt/format.h>
 
@@ -25,8 +23,6 @@
 #include <limits>
 
 namespace armour::simulation {
-
-using detail::buildBuckets;
 
 World::World(const WorldSettings& settings) : settings_(settings) {}
 World::~World() = default;
@@ -68,7 +64,7 @@ ShapeId World::addShape(const std::string& name, const geometry::TriangleMesh& m
   model->bounds = model->mesh.bounds();
   model->levelSet = std::make_unique<contact::LevelSet>(model->mesh, settings_.levelSet, "shape '" + name + "'");
   model->samples = std::make_unique<contact::SurfaceSamples>(model->mesh, settings_.samples, "shape '" + name + "'");
-  buildBuckets(*model);
+  model->buckets = contact::buildBuckets(*model->samples, model->bounds);
   if (settings_.contactModel == ContactModel::Fdem) {
     model->fdem = std::make_unique<contact::FdemMesh>(model->mesh, settings_.fdem, "shape '" + name + "'");
     // Friction keys hold two element indices in 16 bits each (WorldContacts.cpp).
@@ -226,6 +222,18 @@ double World::timeStep() const {
   if (cachedStep_ > 0.0) {
     return cachedStep_;
   }
+  if (settings_.solver == ContactSolverKind::Constraint) {
+    // No stability limit from the contact stiffness (the soft constraints are capped at a quarter
+    // of the substep rate); the largest step is the one measured stable (docs/benchmarks.md).
+    const double dt = settings_.timeStep > 0.0 ? settings_.timeStep : settings_.constraint.timeStep;
+    if (!(dt <= kMaxConstraintStep) || !(dt >= kMinConstraintStep)) {
+      core::failInput("time_step", "{:.4g} s with contact.solver: constraint: the solver is measured stable for steps "
+                                   "of {:.4g} to {:.4g} s; use time_step: auto ({:.4g} s) or a step in that range",
+                      dt, kMinConstraintStep, kMaxConstraintStep, settings_.constraint.timeStep);
+    }
+    cachedStep_ = dt;
+    return cachedStep_;
+  }
   const double limit = stableTimeStep();
   if (settings_.timeStep > 0.0) {
     if (settings_.timeStep > limit) {
@@ -245,6 +253,10 @@ double World::timeStep() const {
 }
 
 void World::step() {
+  if (settings_.solver == ContactSolverKind::Constraint) {
+    stepConstraint();
+    return;
+  }
   const double dt = timeStep();
   if (!forcesReady_) {
     computeForces(dt, time_);
@@ -253,13 +265,21 @@ void World::step() {
   // Work of the external loads over the step, trapezoidal in F . v (exact for constant loads and
   // velocity; second order otherwise), so the energy guard sees waves as work, not instability.
   const double powerBefore = externalPower();
+  auto clock = StepProfile::Clock::now();
   dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
   dynamics::drift(bodies_, dt);
+  profile_.add(Stage::Integrate, clock);
   computeForces(dt, time_ + dt);
+  clock = StepProfile::Clock::now();
   dynamics::kick(bodies_, 0.5 * dt, settings_.gravity);
+  clock = profile_.add(Stage::Integrate, clock);
   externalWork_ += 0.5 * dt * (powerBefore + externalPower());
   time_ += dt;
   ++steps_;
+  finishStep(dt, clock);
+}
+
+void World::finishStep(double dt, StepProfile::Clock::time_point clock) {
   stats_.awakeBodies = bodies_.awakeBodies().size();
   for (BodyId b : bodies_.awakeBodies()) {
     if (!bodies_.position(b).allFinite() || !bodies_.velocity(b).allFinite() ||
@@ -269,10 +289,13 @@ void World::step() {
                                         time_, bodies_.describe(b)));
     }
   }
+  clock = profile_.add(Stage::Guards, clock);
   updateSleep(dt);
+  clock = profile_.add(Stage::Sleep, clock);
   if (settings_.energyGuard.enabled && steps_ % std::max<std::uint32_t>(1, settings_.energyGuard.checkInterval) == 0) {
     checkEnergy();
   }
+  profile_.add(Stage::Guards, clock);
 }
 
 void World::evaluateContacts() {

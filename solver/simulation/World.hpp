@@ -15,13 +15,18 @@
 
 #include "contact/BroadPhase.hpp"
 #include "contact/ContactLaw.hpp"
+#include "contact/ContactReduction.hpp"
+#include "contact/ContactSolver.hpp"
 #include "contact/FdemMesh.hpp"
 #include "contact/LevelSet.hpp"
+#include "contact/NarrowPhase.hpp"
+#include "contact/SampleBuckets.hpp"
 #include "contact/SurfaceSamples.hpp"
 #include "dynamics/RigidBodies.hpp"
 #include "geometry/MassProperties.hpp"
 #include "geometry/TriangleMesh.hpp"
 #include "simulation/LoadStage.hpp"
+#include "simulation/StepProfile.hpp"
 #include "simulation/WorldState.hpp"
 
 #include <array>
@@ -85,6 +90,34 @@ struct EnergyGuardSettings {
 /// Both share the broad phase, friction, damping, guard rails and output.
 enum class ContactModel { LevelSet, Fdem };
 
+/// Which solver turns contacts into motion (docs/theory.md, "The constraint solver"):
+///  - Penalty: forces from the contact law at every sample point, explicit velocity Verlet at a
+///    step below the stability limit of the stiffest contact (7e-5 to 4e-4 s for armour units);
+///  - Constraint: velocity-level contact constraints on a few reduced points per patch, soft
+///    projected Gauss-Seidel with substeps (contact/ContactSolver), at steps of 1/240 s and more.
+/// Both read the same narrow phase (contact/NarrowPhase).
+enum class ContactSolverKind { Penalty, Constraint };
+
+/// The constraint solver's step range (unit: s): above 1/30 s a wave's 0.05 s records are skipped
+/// and the speculative margin no longer covers a falling unit's travel; below 1e-6 s the penalty
+/// solver is the better tool. Ours.
+inline constexpr double kMaxConstraintStep = 1.0 / 30.0;
+inline constexpr double kMinConstraintStep = 1.0e-6;
+
+/// Settings of the constraint solver (contact.constraint in the scene file). Every default is
+/// ours, chosen from the measurements in docs/benchmarks.md ("The constraint solver").
+struct ConstraintSettings {
+  double timeStep = 1.0 / 200.0;      ///< step with time_step: auto (unit: s); divides the storm record interval 0.05 s
+  int substeps = 4;                   ///< substeps per step (unit: -)
+  /// Damping ratio of each contact point's spring; the spring itself is the penalty law's E_p A / L
+  /// (the materials' penalty modulus), capped at a quarter of the substep rate (unit: -).
+  double dampingRatio = 10.0;
+  double pushSpeed = 3.0;             ///< largest speed at which an overlap is pushed out (unit: m/s)
+  double restitutionThreshold = 0.2;  ///< approach speed below which impacts are inelastic (unit: m/s)
+  double speculativeMargin = 0.05;    ///< gap within which contacts are speculative, as a fraction of the pair's smaller Dn (unit: -)
+  double patchAngle = 0.5;            ///< largest angle between normals of one contact patch (unit: rad)
+};
+
 /// Settings of the whole simulation.
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
@@ -93,6 +126,8 @@ struct WorldSettings {
   contact::LevelSetSettings levelSet;     ///< grid resolution per shape
   contact::SurfaceSampleSettings samples; ///< surface sample spacing per shape
   ContactModel contactModel = ContactModel::LevelSet; ///< narrow phase and normal force
+  ContactSolverKind solver = ContactSolverKind::Penalty; ///< contact.solver
+  ConstraintSettings constraint;          ///< contact.constraint (solver = Constraint only)
   contact::FdemMeshSettings fdem;         ///< contact elements per shape (fdem only)
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
@@ -105,18 +140,8 @@ struct WorldSettings {
   bool recordContacts = false;            ///< keep the contact patches of each force evaluation (contactPatches())
 };
 
-/// Surface samples bucketed on a coarse grid over the shape's bounds, so that the narrow phase
-/// visits only the samples near the overlap of two boxes (a face contact touches a sixth of a
-/// cube's samples).
-struct SampleBuckets {
-  static constexpr int kCells = 6;           ///< buckets per axis (unit: -)
-  Vec3 origin = Vec3::Zero();                ///< lower corner (unit: m, body frame, unscaled)
-  Vec3 cell = Vec3::Ones();                  ///< bucket size (unit: m)
-  std::vector<std::uint32_t> start;          ///< kCells^3 + 1 offsets into `samples`
-  std::vector<std::uint32_t> samples;        ///< sample indices grouped by bucket
-  std::vector<Vec3> sphereCentre;            ///< per bucket: centre of the smallest box of its samples (m)
-  std::vector<double> sphereRadius;          ///< per bucket: radius about that centre holding its samples (m)
-};
+/// Surface samples bucketed on a coarse grid over the shape's bounds (contact/SampleBuckets.hpp).
+using SampleBuckets = contact::SampleBuckets;
 
 /// A shape prepared for simulation: moved to its principal frame, with its contact geometry.
 struct ShapeModel {
@@ -232,7 +257,13 @@ public:
   [[nodiscard]] ShapeId bodyShape(BodyId b) const { return bodyShape_[b]; }
   [[nodiscard]] double bodyScale(BodyId b) const { return bodyScale_[b]; }
   [[nodiscard]] const Quat& bodyNaturalToBody(BodyId b) const { return shapes_[bodyShape_[b]]->naturalToBody; }
+  /// The narrow phase's view of body b: its shape's contact geometry and its pose (WorldContacts.cpp).
+  [[nodiscard]] contact::ContactShape contactShape(BodyId b) const;
+  [[nodiscard]] contact::ContactPose contactPose(BodyId b) const;
   [[nodiscard]] const StepStatistics& lastStep() const { return stats_; }
+  /// Wall time per named stage of the step, summed since the World was made or the profile reset.
+  [[nodiscard]] const StepProfile& profile() const { return profile_; }
+  void resetProfile() { profile_.reset(); }
   /// Engaged sample points (fdem: element-pair and face records) on body b in the last force
   /// evaluation (unit: -).
   [[nodiscard]] std::int32_t contactCount(BodyId b) const { return b < contactCount_.size() ? contactCount_[b] : 0; }
@@ -289,6 +320,8 @@ public:
   void restoreState(const WorldState& state);
 
 private:
+  using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
+  using PairHistories = std::vector<std::pair<contact::BodyPair, History>>;
   [[nodiscard]] double bodyDn(BodyId b) const { return bodyDn_[b]; }
   // The stages of the step, grouped by the source file that holds them (docs/architecture.md,
   // "World's source files"); World.cpp holds the rest and step() itself.
@@ -299,6 +332,24 @@ private:
   /// The fdem narrow phase and law of one pair (WorldContacts.cpp): fills pw like the level-set path.
   void fdemPairForces(PairWork& pw, double dt) const;
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
+  /// Candidate pairs of this step: broad-phase body pairs (convex pieces flagged), then body-plane
+  /// pairs of awake bodies reaching below a plane (WorldContacts.cpp).
+  void candidatePairs(std::vector<contact::BodyPair>& out);
+  /// Guard rails on one pair's deepest overlap: throws SimulationError naming the bodies.
+  void guardOverlap(const contact::BodyPair& key, double maxOverlap, double fdemReach) const;
+  /// Pairs not examined because none of their bodies is awake keep their history (sleeping packs
+  /// wake with their contacts); then history_ = next, sorted by pair.
+  void keepSleepingHistory(PairHistories& next);
+  /// After either solver's step: non-finite guard, sleep, energy guard (World.cpp).
+  void finishStep(double dt, StepProfile::Clock::time_point clock);
+  // WorldConstraint.cpp: the constraint solver's step (contact.solver: constraint).
+  void stepConstraint();
+  struct PairManifold;
+  void collideConstraint(std::vector<PairManifold>& manifolds);
+  void buildConstraints(std::vector<PairManifold>& manifolds, double h);
+  void storeConstraintResults(const std::vector<PairManifold>& manifolds, double dt);
+  void syncSolverBodies(bool inertia);
+  void writeSolverVelocities();
   // WorldLoads.cpp: the external-load stages.
   void applyLoadStages(double time);
   [[nodiscard]] double externalPower() const;
@@ -328,10 +379,16 @@ private:
   std::vector<std::uint8_t> active_;
   contact::BroadPhase broadPhase_;
   std::vector<contact::BodyPair> pairs_;
+  // Constraint solver state (WorldConstraint.cpp): solver body 0 is the ground.
+  std::vector<contact::SolverBody> solverBodies_;
+  std::vector<std::int32_t> solverIndex_;          ///< body -> solver body (0: ground)
+  std::vector<contact::ContactConstraint> constraints_;
+  std::vector<std::uint32_t> constraintPair_;      ///< constraint -> manifold index
+  std::vector<Vec3> stepStartPosition_;            ///< awake bodies' x at the step start (m)
+  std::vector<Quat> stepStartOrientation_;
+  StepProfile profile_;
   /// Friction history per body pair (or body-plane / body-convex pair: second = flag bit | index), per
   /// sample key (direction bit | sample index), sorted by key.
-  using History = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
-  using PairHistories = std::vector<std::pair<contact::BodyPair, History>>;
   PairHistories history_; ///< sorted by pair
   [[nodiscard]] const History* findPairHistory(const contact::BodyPair& key) const; // WorldContacts.cpp
   mutable double cachedStep_ = -1.0;

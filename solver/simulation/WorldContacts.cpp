@@ -6,7 +6,6 @@
 #include "simulation/World.hpp"
 
 #include "contact/FdemPotential.hpp"
-#include "simulation/WorldBuckets.hpp"
 #include "simulation/WorldInternal.hpp"
 
 #include <fmt/format.h>
@@ -21,22 +20,11 @@
 
 namespace armour::simulation {
 
-using detail::forBucketsNear;
 using detail::kConvexBit;
 using detail::kPlaneBit;
-using detail::kReverseBit;
 using detail::kStaticBits;
 
 namespace {
-
-/// One engaged sample point before the law is applied.
-struct Engaged {
-  std::uint32_t key;  ///< direction bit | sample index
-  Vec3 point;         ///< world position (m)
-  Vec3 normal;        ///< pushes the probe body (unit)
-  double depth;       ///< m
-  double area;        ///< m^2
-};
 
 /// The friction history of sample `key` in a pair's history (sorted by key), or null.
 const contact::PointHistory* findHistory(const std::vector<std::pair<std::uint32_t, contact::PointHistory>>* h,
@@ -120,6 +108,21 @@ const World::History* World::findPairHistory(const contact::BodyPair& key) const
   const auto it = std::lower_bound(history_.begin(), history_.end(), key,
                                    [](const auto& e, const contact::BodyPair& k) { return e.first < k; });
   return it != history_.end() && it->first == key ? &it->second : nullptr;
+}
+
+contact::ContactShape World::contactShape(BodyId b) const {
+  const ShapeModel& shape = *shapes_[bodyShape_[b]];
+  return {shape.levelSet.get(), shape.samples.get(), &shape.buckets, shape.radius};
+}
+
+contact::ContactPose World::contactPose(BodyId b) const {
+  contact::ContactPose p;
+  p.position = bodies_.position(b);
+  p.orientation = bodies_.orientation(b);
+  p.rotation = p.orientation.toRotationMatrix();
+  p.scale = bodyScale_[b];
+  p.dn = bodyDn(b);
+  return p;
 }
 
 void World::updateBoxes() {
@@ -272,19 +275,13 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   std::sort(pw.history.begin(), pw.history.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
 }
 
-void World::computeForces(double dt, double stateTime) {
-  bodies_.clearForces();
-  updateBoxes();
+void World::candidatePairs(std::vector<contact::BodyPair>& out) {
   broadPhase_.findPairs(boxes_, active_, pairs_);
   const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
-  // Work list: body pairs from the broad phase, then body-plane pairs (awake bodies whose box
-  // reaches below the plane).
-  std::vector<PairWork> work;
-  work.reserve(pairs_.size() + nBodies);
+  out.clear();
+  out.reserve(pairs_.size() + nBodies);
   for (const auto& p : pairs_) {
-    PairWork pw;
-    pw.key = p.second < nBodies ? p : contact::BodyPair{p.first, kConvexBit | (p.second - nBodies)};
-    work.push_back(std::move(pw));
+    out.push_back(p.second < nBodies ? p : contact::BodyPair{p.first, kConvexBit | (p.second - nBodies)});
   }
   for (BodyId b = 0; b < nBodies; ++b) {
     if (!active_[b]) {
@@ -297,11 +294,24 @@ void World::computeForces(double dt, double stateTime) {
                         pl.normal.y() >= 0 ? boxes_[b].min.y() : boxes_[b].max.y(),
                         pl.normal.z() >= 0 ? boxes_[b].min.z() : boxes_[b].max.z());
       if ((lowest - pl.point).dot(pl.normal) < 0.0) {
-        PairWork pw;
-        pw.key = {b, kPlaneBit | k};
-        work.push_back(std::move(pw));
+        out.push_back({b, kPlaneBit | k});
       }
     }
+  }
+}
+
+void World::computeForces(double dt, double stateTime) {
+  auto clock = StepProfile::Clock::now();
+  bodies_.clearForces();
+  updateBoxes();
+  clock = profile_.add(Stage::Boxes, clock);
+  std::vector<contact::BodyPair> keys;
+  candidatePairs(keys);
+  clock = profile_.add(Stage::BroadPhase, clock);
+  const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
+  std::vector<PairWork> work(keys.size());
+  for (std::size_t w = 0; w < keys.size(); ++w) {
+    work[w].key = keys[w];
   }
 
   // One pair can cost as much as a hundred (a concave unit on another versus a body on one
@@ -316,161 +326,23 @@ void World::computeForces(double dt, double stateTime) {
     const BodyId a = pw.key.first;
     const bool plane = (pw.key.second & kStaticBits) != 0; // any static geometry: plane or convex piece
     const History* previous = findPairHistory(pw.key);
-    std::vector<Engaged> engaged;
-    const ShapeModel& shapeA = *shapes_[bodyShape_[a]];
-    const double sA = bodyScale_[a];
-    const Quat& qA = bodies_.orientation(a);
+    std::vector<contact::ContactPoint> engaged;
     const Vec3& xA = bodies_.position(a);
-    const auto& samplesA = *shapeA.samples;
     double lengthScale = bodyDn(a);
     contact::ContactParameters params;
     double inverseMassSum = bodies_.inverseMass(a);
-
     if (plane) {
-      // Static geometry as a set of half-spaces: a plane is one, a convex piece several; a
-      // sample is inside when it is below all of them, at the depth of the nearest face.
       const bool isPlane = (pw.key.second & kPlaneBit) != 0;
-      const std::uint32_t index = pw.key.second & ~kStaticBits;
-      // Views of the faces, no copies: this runs for every body-static pair every step.
-      const StaticTarget target = staticTarget(planes_, convex_, isPlane, index, boxes_[a]);
-      const std::span<const Vec3> normals = target.normals;
-      const std::span<const double> offsets = target.offsets();
-      const MaterialId staticMaterial = target.material;
-      const geometry::Box3& region = target.region; // where samples can be inside (world)
-      // Visit only the buckets that reach into the region and below every face.
-      const SampleBuckets& bk = shapeA.buckets;
-      const geometry::Mat3 RA = qA.toRotationMatrix();
-      const geometry::Mat3 toLocal = RA.transpose();
-      const Vec3 regionCentre = toLocal * (region.centre() - xA) / sA;
-      const Vec3 regionHalf = toLocal.cwiseAbs() * (0.5 * region.size()) / sA;
-      const Vec3 cellHalf = 0.5 * bk.cell;
-      forBucketsNear(shapeA, regionCentre - regionHalf, regionCentre + regionHalf, [&](int cell, const Vec3& low) {
-
-        const Vec3 worldCentre = xA + qA * (sA * (low + cellHalf));
-        for (std::size_t k = 0; k < normals.size(); ++k) {
-          const double reach = sA * cellHalf.dot((toLocal * normals[k]).cwiseAbs());
-          if (normals[k].dot(worldCentre) - offsets[k] > reach) {
-            return; // the whole bucket is outside this face
-          }
-        }
-        for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
-          const std::uint32_t i = bk.samples[j];
-
-          const Vec3 X = xA + RA * (sA * samplesA.positions()[i]);
-          double phi = -std::numeric_limits<double>::infinity();
-          std::size_t nearest = 0;
-          for (std::size_t k = 0; k < normals.size(); ++k) {
-            const double d = normals[k].dot(X) - offsets[k];
-            if (d > phi) {
-              phi = d;
-              nearest = k;
-            }
-          }
-          if (phi < 0.0) {
-            pw.maxOverlap = std::max(pw.maxOverlap, -phi); // engaged or not: the guard rails see every point inside
-            // Projected tributary area: the pressure acts on the part of the sample's area that
-            // faces the static surface, so a face pressed flat engages exactly its own area.
-            const Vec3& n = normals[nearest];
-            const double area = -sA * sA * (RA * samplesA.areaVectors()[i]).dot(n);
-            if (area > 0.0) {
-              engaged.push_back({i, X, n, -phi, area});
-            }
-          }
-        }
-      });
-      params = pairParameters(bodyMaterial_[a], staticMaterial, lengthScale);
+      const StaticTarget target = staticTarget(planes_, convex_, isPlane, pw.key.second & ~kStaticBits, boxes_[a]);
+      const contact::HalfSpaces solid{target.normals, target.offsets(), target.region};
+      pw.maxOverlap = contact::samplesInHalfSpaces(contactShape(a), contactPose(a), solid, 0.0, engaged);
+      params = pairParameters(bodyMaterial_[a], target.material, lengthScale);
     } else {
       const BodyId b = pw.key.second;
-      const ShapeModel& shapeB = *shapes_[bodyShape_[b]];
-      const double sB = bodyScale_[b];
       lengthScale = std::min(lengthScale, bodyDn(b));
       inverseMassSum += bodies_.inverseMass(b);
-      // Both directions, so that both bodies' edges and corners are detected, each weighted by
-      // its probe's sample density: w_A = h_B^2 / (h_A^2 + h_B^2), h = sample spacing (a fixed
-      // fraction of Dn), so w_A + w_B = 1. Equal bodies get half each (symmetric in A and B); a
-      // unit on one 4.6 times its size (mass ratio 100) is measured mostly by its own fine
-      // samples, not by the few coarse samples of the big one that fall on its small face.
-      const double hA2 = bodyDn(a) * bodyDn(a), hB2 = bodyDn(b) * bodyDn(b);
-      const std::array<double, 2> weight{hB2 / (hA2 + hB2), hA2 / (hA2 + hB2)};
-      // Near misses first: in a rough pile most candidate pairs never touch (the boxes overlap,
-      // the bodies do not: a rock under a Core-Loc's box but between its legs). A ball of radius
-      // R around a body's centroid holds the body; if the other body's true distance at that
-      // centre exceeds R, they are apart (LevelSet::distanceLowerBound: phi - sqrt(3) h inside the
-      // grid, the distance to the mesh box outside it), for either body.
-      bool apart = false;
-      for (int dir = 0; dir < 2 && !apart; ++dir) {
-        const BodyId probe = dir == 0 ? a : b;
-        const BodyId target = dir == 0 ? b : a;
-        const ShapeModel& ps = dir == 0 ? shapeA : shapeB;
-        const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
-        const double st = bodyScale_[target];
-        const Vec3 centre = bodies_.orientation(target).conjugate() * (bodies_.position(probe) - bodies_.position(target)) / st;
-        apart = ts.levelSet->distanceLowerBound(centre) > (ps.radius * bodyScale_[probe]) / st;
-      }
-      for (int dir = 0; dir < 2 && !apart; ++dir) {
-        const BodyId probe = dir == 0 ? a : b;
-        const BodyId target = dir == 0 ? b : a;
-        const ShapeModel& ps = dir == 0 ? shapeA : shapeB;
-        const ShapeModel& ts = dir == 0 ? shapeB : shapeA;
-        const double sp = dir == 0 ? sA : sB;
-        const double st = dir == 0 ? sB : sA;
-        const geometry::Mat3 Rp = bodies_.orientation(probe).toRotationMatrix();
-        const Vec3& xp = bodies_.position(probe);
-        const geometry::Mat3 Rt = bodies_.orientation(target).toRotationMatrix();
-        const Vec3& xt = bodies_.position(target);
-        const auto& samples = *ps.samples;
-        const contact::LevelSet& ls = *ts.levelSet;
-        // Probe frame (unscaled) -> target frame (unscaled): L = Rrel p + trel.
-        const geometry::Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
-        const Vec3 trel = Rt.transpose() * (xp - xt) / st;
-        // phi < 0 needs L within the target's mesh bounds grown by sqrt(3) h (LevelSet::mayPenetrate).
-        const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * ls.cellSize());
-        const Vec3 targetLo = ls.meshBounds().min - grow;
-        const Vec3 targetHi = ls.meshBounds().max + grow;
-        // The target's grown mesh box (an oriented box) seen from the probe's unscaled body
-        // frame, as an axis-aligned box there: tighter than the target's world box.
-        const geometry::Mat3 toProbe = Rp.transpose() * Rt * (st / sp);
-        const Vec3 centre = toProbe * (0.5 * (targetLo + targetHi)) + Rp.transpose() * (xt - xp) / sp;
-        const Vec3 half = toProbe.cwiseAbs() * (0.5 * (targetHi - targetLo));
-        const double h = ls.cellSize();
-        forBucketsNear(ps, centre - half, centre + half, [&](int cell, const Vec3& /*low*/) {
-
-          // Whole bucket first, by the sphere around its samples (radius r, centre c, in the
-          // target frame): an interpolated phi < 0 at x needs a true distance below sqrt(3) h
-          // there, and the true distance at x is at least that at c minus r; so a lower bound
-          // of the distance at c above r + sqrt(3) h rules out the whole bucket.
-          const Vec3 bc = Rrel * ps.buckets.sphereCentre[cell] + trel;
-          const double r = ps.buckets.sphereRadius[cell] * (sp / st);
-          if (ls.distanceLowerBound(bc) - r > std::sqrt(3.0) * h) {
-            return;
-          }
-
-          for (std::uint32_t j = ps.buckets.start[cell]; j < ps.buckets.start[cell + 1]; ++j) {
-            const std::uint32_t i = ps.buckets.samples[j];
-
-            const Vec3 L = Rrel * samples.positions()[i] + trel;
-            if ((L.array() < targetLo.array()).any() || (L.array() > targetHi.array()).any() || !(ls.value(L) < 0.0)) {
-              continue;
-            }
-
-            const contact::LevelSetQuery q = ls.query(L);
-            if (q.phi < 0.0) {
-              // Engaged or not, the guard rails see every point inside: past the other body's
-              // middle a point faces the wrong way and is not engaged, but the overlap is real.
-              pw.maxOverlap = std::max(pw.maxOverlap, -q.phi * st);
-            }
-            if (q.phi < 0.0 && q.normal.squaredNorm() > 0.0) {
-              const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
-              const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
-              // The direction's weight scales the tributary area (k = E_p a / L is linear in a).
-              const double area = -weight[dir] * sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
-              if (area > 0.0) {
-                engaged.push_back({(dir == 0 ? 0u : kReverseBit) | i, X, dir == 0 ? n : Vec3(-n), -q.phi * st, area});
-              }
-            }
-          }
-        });
-      }
+      pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
+                                                  engaged);
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
     }
     if (engaged.empty()) {
@@ -518,6 +390,8 @@ void World::computeForces(double dt, double stateTime) {
     std::sort(pw.history.begin(), pw.history.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   }
 
+  clock = profile_.add(Stage::NarrowPhase, clock);
+
   // Serial, ordered accumulation: bit-identical for any thread count.
   stats_ = {};
   stats_.candidatePairs = work.size();
@@ -559,52 +433,18 @@ void World::computeForces(double dt, double stateTime) {
       patches_.push_back(patch);
     }
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
-    // Guard rails: an overlap this deep means the contact cannot hold (time step, stiffness or
-    // speed), and the forces that follow are meaningless; past the middle of a thin part the
-    // push would even turn and carry the body through (tunnelling).
-    const BodyId other = pw.key.second & ~kStaticBits;
-    double dn = bodyDn(a);
-    double inner = shapes_[bodyShape_[a]]->innerDepth * bodyScale_[a];
-    std::string otherName;
-    if ((pw.key.second & kStaticBits) == 0) {
-      dn = std::min(dn, bodyDn(other));
-      inner = std::min(inner, shapes_[bodyShape_[other]]->innerDepth * bodyScale_[other]);
-      otherName = bodies_.describe(other);
-    } else if ((pw.key.second & kPlaneBit) != 0) {
-      otherName = "plane '" + planes_[other].name + "'";
-    } else {
-      inner = std::min(inner, convex_[other].innerDepth);
-      otherName = "static piece '" + convex_[other].name + "'";
-    }
-    const double overlapLimit = settings_.maxOverlapPerDn * dn;
-    const double tunnelLimit = settings_.maxOverlapPerInnerDepth * inner;
-    // fdem: the element potentials peak at the surface elements' centroids (median depth
-    // fdemReach); past it a growing share of the engaged elements pushes less the deeper they go.
-    constexpr double kFdemReachFraction = 0.8;
-    if (pw.maxOverlap > kFdemReachFraction * pw.fdemReach) {
-      throw SimulationError(fmt::format(
-          "t = {:.6g} s: {} and {} overlap by {:.4g} m, {} x the median depth {:.4g} m at which the fdem potential "
-          "of their surface elements peaks: deeper, the push fades; raise the penalty modulus, lower the speed, or "
-          "use fewer, larger contact elements (contact.fdem.elements_per_unit)",
-          time_, bodies_.describe(a), otherName, pw.maxOverlap, kFdemReachFraction, pw.fdemReach));
-    }
-    if (pw.maxOverlap > std::min(overlapLimit, tunnelLimit)) {
-      if (tunnelLimit < overlapLimit) {
-        throw SimulationError(fmt::format(
-            "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x the inner depth {:.4g} m of the thinner "
-            "part: it would pass through it (tunnel); make thin parts thicker, lower the speed, or raise the "
-            "penalty modulus",
-            time_, bodies_.describe(a), otherName, pw.maxOverlap, settings_.maxOverlapPerInnerDepth, inner));
-      }
-      throw SimulationError(fmt::format(
-          "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x Dn = {:.4g} m; the contact cannot hold: "
-          "lower the time step, raise the penalty modulus, or check the initial positions",
-          time_, bodies_.describe(a), otherName, pw.maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
-    }
+    guardOverlap(pw.key, pw.maxOverlap, pw.fdemReach);
     if (!pw.history.empty()) {
       nextHistory.emplace_back(pw.key, std::move(pw.history));
     }
   }
+  keepSleepingHistory(nextHistory);
+  clock = profile_.add(Stage::Accumulate, clock);
+  applyLoadStages(stateTime);
+  profile_.add(Stage::Loads, clock);
+}
+
+void World::keepSleepingHistory(PairHistories& nextHistory) {
   // Pairs that were not examined because none of their bodies is awake keep their friction
   // springs: a sleeping pack wakes with the same contact state it fell asleep with.
   for (auto& [key, h] : history_) {
@@ -617,7 +457,53 @@ void World::computeForces(double dt, double stateTime) {
   // examined or kept).
   std::sort(nextHistory.begin(), nextHistory.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   history_ = std::move(nextHistory);
-  applyLoadStages(stateTime);
+}
+
+
+void World::guardOverlap(const contact::BodyPair& key, double maxOverlap, double fdemReach) const {
+  const BodyId a = key.first;
+  // Guard rails: an overlap this deep means the contact cannot hold (time step, stiffness or
+  // speed), and the forces that follow are meaningless; past the middle of a thin part the
+  // push would even turn and carry the body through (tunnelling).
+  const BodyId other = key.second & ~kStaticBits;
+  double dn = bodyDn(a);
+  double inner = shapes_[bodyShape_[a]]->innerDepth * bodyScale_[a];
+  std::string otherName;
+  if ((key.second & kStaticBits) == 0) {
+    dn = std::min(dn, bodyDn(other));
+    inner = std::min(inner, shapes_[bodyShape_[other]]->innerDepth * bodyScale_[other]);
+    otherName = bodies_.describe(other);
+  } else if ((key.second & kPlaneBit) != 0) {
+    otherName = "plane '" + planes_[other].name + "'";
+  } else {
+    inner = std::min(inner, convex_[other].innerDepth);
+    otherName = "static piece '" + convex_[other].name + "'";
+  }
+  const double overlapLimit = settings_.maxOverlapPerDn * dn;
+  const double tunnelLimit = settings_.maxOverlapPerInnerDepth * inner;
+  // fdem: the element potentials peak at the surface elements' centroids (median depth
+  // fdemReach); past it a growing share of the engaged elements pushes less the deeper they go.
+  constexpr double kFdemReachFraction = 0.8;
+  if (maxOverlap > kFdemReachFraction * fdemReach) {
+    throw SimulationError(fmt::format(
+        "t = {:.6g} s: {} and {} overlap by {:.4g} m, {} x the median depth {:.4g} m at which the fdem potential "
+        "of their surface elements peaks: deeper, the push fades; raise the penalty modulus, lower the speed, or "
+        "use fewer, larger contact elements (contact.fdem.elements_per_unit)",
+        time_, bodies_.describe(a), otherName, maxOverlap, kFdemReachFraction, fdemReach));
+  }
+  if (maxOverlap > std::min(overlapLimit, tunnelLimit)) {
+    if (tunnelLimit < overlapLimit) {
+      throw SimulationError(fmt::format(
+          "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x the inner depth {:.4g} m of the thinner "
+          "part: it would pass through it (tunnel); make thin parts thicker, lower the speed, or raise the "
+          "penalty modulus",
+          time_, bodies_.describe(a), otherName, maxOverlap, settings_.maxOverlapPerInnerDepth, inner));
+    }
+    throw SimulationError(fmt::format(
+        "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x Dn = {:.4g} m; the contact cannot hold: "
+        "lower the time step, raise the penalty modulus, or check the initial positions",
+        time_, bodies_.describe(a), otherName, maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
+  }
 }
 
 } // namespace armour::simulation

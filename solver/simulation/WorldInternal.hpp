@@ -14,6 +14,6 @@ namespace armour::simulation::detail {
 constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< second pair index of a body-plane pair
 constexpr std::uint32_t kConvexBit = 0x40000000u; ///< second pair index of a body-convex pair
 constexpr std::uint32_t kStaticBits = kPlaneBit | kConvexBit;
-constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A
+constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A (contact::kReverseSampleBit)
 
 } // namespace armour::simulation::detail

@@ -47,7 +47,7 @@ WorldState World::captureState() const {
   }
   for (const auto& [pair, points] : history_) {
     for (const auto& [key, h] : points) {
-      s.contacts.push_back({pair.first, pair.second, key, h.stretch, h.sliding});
+      s.contacts.push_back({pair.first, pair.second, key, h.stretch, h.sliding, h.normalImpulse, h.tangentImpulse});
     }
   }
   return s;
@@ -123,7 +123,8 @@ void World::restoreState(const WorldState& s) {
   }
   std::map<contact::BodyPair, History> byPair;
   for (const ContactPointState& c : s.contacts) {
-    byPair[{c.first, c.second}].emplace_back(c.key, contact::PointHistory{c.stretch, c.sliding});
+    byPair[{c.first, c.second}].emplace_back(c.key,
+                                             contact::PointHistory{c.stretch, c.sliding, c.normalImpulse, c.tangentImpulse});
   }
   history_.clear();
   for (auto& [pair, points] : byPair) {

@@ -40,6 +40,8 @@ struct ContactPointState {
   std::uint32_t key = 0;    ///< direction bit | sample index
   dynamics::Vec3 stretch = dynamics::Vec3::Zero(); ///< tangential spring stretch, world (m)
   bool sliding = false;
+  double normalImpulse = 0.0;                              ///< constraint solver's warm start (N s)
+  dynamics::Vec3 tangentImpulse = dynamics::Vec3::Zero();  ///< constraint solver's warm start, world (N s)
 };
 
 struct WorldState {

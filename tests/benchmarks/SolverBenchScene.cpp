@@ -44,9 +44,16 @@ double drawScale(const std::string& kind, double dn, std::mt19937_64& rng) {
   return dn * std::cbrt(volume(rng));
 }
 
+namespace {
+armour::simulation::ContactSolverKind benchSolver = armour::simulation::ContactSolverKind::Penalty;
+} // namespace
+
+void setBenchSolver(armour::simulation::ContactSolverKind solver) { benchSolver = solver; }
+
 WorldSettings baseSettings(bool sleep) {
   WorldSettings s;
   s.sleep.enabled = sleep;
+  s.solver = benchSolver;
   return s;
 }
 

@@ -47,6 +47,8 @@ constexpr double kMaxScaleOverDn = 1.0913; // cbrt(1.3)
 
 /// The World settings of every case: the defaults, sleep on or off.
 WorldSettings baseSettings(bool sleep);
+/// The contact solver of every World the benchmark builds (bench_solver --solver).
+void setBenchSolver(armour::simulation::ContactSolverKind solver);
 
 /// Concrete, 2400 kg/m^3, with the given friction (static = dynamic) and restitution.
 MaterialId addConcrete(World& world, double friction, double restitution);

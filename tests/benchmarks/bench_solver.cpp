@@ -222,6 +222,9 @@ int main(int argc, char** argv) {
   armour::bench::recordInvocation(argc, argv);
   CLI::App app{"armour rigid-solver benchmark (issue 3): piles of units and a Core-Loc armour layer"};
   app.require_subcommand(1);
+  std::string solver = "penalty";
+  app.add_option("--solver", solver, "contact solver of every case: penalty or constraint (contact.solver)")
+      ->check(CLI::IsMember({"penalty", "constraint"}));
 
   PileOptions pile;
   auto* pileCmd = app.add_subcommand("pile", "N units dropped into a walled box; time K steps after landing");
@@ -300,6 +303,9 @@ int main(int argc, char** argv) {
                         "fdem surface elements' centroids, the fdem guard rail)");
 
   CLI11_PARSE(app, argc, argv);
+  armour::bench::setBenchSolver(solver == "constraint" ? armour::simulation::ContactSolverKind::Constraint
+                                                       : armour::simulation::ContactSolverKind::Penalty);
+  std::printf("contact solver: %s\n", solver.c_str());
 
   try {
     if (modelsCmd->parsed()) {

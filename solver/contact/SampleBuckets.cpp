@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "simulation/WorldBuckets.hpp"
+#include "contact/SampleBuckets.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
-namespace armour::simulation::detail {
+namespace armour::contact {
 
-void buildBuckets(ShapeModel& shape) {
-  SampleBuckets& b = shape.buckets;
-  const geometry::Box3 box = shape.bounds;
+SampleBuckets buildBuckets(const SurfaceSamples& samples, const Box3& box) {
+  constexpr int kBuckets = SampleBuckets::kCells;
+  SampleBuckets b;
+  b.bounds = box;
   b.origin = box.min;
   b.cell = (box.size() / kBuckets).cwiseMax(Vec3::Constant(1e-12));
-  const auto& positions = shape.samples->positions();
+  const auto& positions = samples.positions();
   std::vector<std::uint32_t> cellOf(positions.size());
   b.start.assign(kBuckets * kBuckets * kBuckets + 1, 0);
   for (std::uint32_t i = 0; i < positions.size(); ++i) {
@@ -45,6 +47,7 @@ void buildBuckets(ShapeModel& shape) {
       b.sphereRadius[c] = std::max(b.sphereRadius[c], (positions[b.samples[j]] - tight.centre()).norm());
     }
   }
+  return b;
 }
 
-} // namespace armour::simulation::detail
+} // namespace armour::contact

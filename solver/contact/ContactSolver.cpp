@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "contact/ContactSolver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace armour::contact {
+
+namespace {
+
+/// The two bodies of a constraint (index 0: the ground, whose zero inverse mass keeps it at rest).
+struct Pair {
+  SolverBody* a;
+  SolverBody* b;
+  Pair(const ContactConstraint& c, std::vector<SolverBody>& bodies)
+      : a(&bodies[static_cast<std::size_t>(c.bodyA)]), b(&bodies[static_cast<std::size_t>(c.bodyB)]) {}
+  /// Impulse P on A at rA, -P on B at rB.
+  void apply(const Vec3& P, const Vec3& rA, const Vec3& rB) const {
+    a->v += a->invMass * P;
+    a->w += a->invInertia * rA.cross(P);
+    b->v -= b->invMass * P;
+    b->w -= b->invInertia * rB.cross(P);
+  }
+  /// Relative velocity of A's material point at rA against B's at rB.
+  [[nodiscard]] Vec3 relativeVelocity(const Vec3& rA, const Vec3& rB) const {
+    return a->v + a->w.cross(rA) - b->v - b->w.cross(rB);
+  }
+};
+
+double effectiveMass(const SolverBody& a, const SolverBody& b, const Vec3& rA, const Vec3& rB, const Vec3& d) {
+  const Vec3 ra = rA.cross(d), rb = rB.cross(d);
+  const double k = a.invMass + b.invMass + ra.dot(a.invInertia * ra) + rb.dot(b.invInertia * rb);
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
+} // namespace
+
+Softness makeSoftness(double stiffness, double zeta, double mass, double h) {
+  if (!(stiffness > 0.0) || !(mass > 0.0)) {
+    return {0.0, 1.0, 0.0};
+  }
+  // Cap the spring at a quarter of the substep rate: omega h <= pi / 2.
+  const double omegaCap = 0.5 * std::numbers::pi / h;
+  const double k = std::min(stiffness, mass * omegaCap * omegaCap);
+  const double c = 2.0 * zeta * std::sqrt(k * mass);
+  const double gamma = 1.0 / (h * (c + h * k));
+  const double massScale = 1.0 / (1.0 + gamma * mass);
+  return {k / (c + h * k), massScale, gamma * mass * massScale};
+}
+
+void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  // The axis least aligned with n, crossed with it (Frisvad-like choice, branch on the smallest
+  // component so that the basis is continuous while n stays in one octant sector).
+  const Vec3 a = std::abs(n.x()) < 0.57735 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57735 ? Vec3::UnitY() : Vec3::UnitZ());
+  t1 = n.cross(a).normalized();
+  t2 = n.cross(t1);
+}
+
+void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodies, double h) {
+  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+  for (int k = 0; k < c.count; ++k) {
+    ConstraintPoint& p = c.points[k];
+    p.normalMass = effectiveMass(a, b, p.rA, p.rB, c.normal);
+    p.softness = makeSoftness(c.stiffness, c.dampingRatio, p.normalMass, h);
+    p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, c.tangent1);
+    p.tangentMass[1] = effectiveMass(a, b, p.rA, p.rB, c.tangent2);
+    p.maxNormalImpulse = 0.0;
+    p.approachSpeed = c.normal.dot(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
+  }
+}
+
+void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {
+  for (const ContactConstraint& c : constraints) {
+    Pair pair(c, bodies);
+    for (int k = 0; k < c.count; ++k) {
+      const ConstraintPoint& p = c.points[k];
+      const Vec3 P = p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangent1 + p.tangentImpulse[1] * c.tangent2;
+      pair.apply(P, p.rA, p.rB);
+    }
+  }
+}
+
+void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
+                   const SolveSettings& settings, bool useBias) {
+  const double invH = 1.0 / h;
+  for (ContactConstraint& c : constraints) {
+    Pair pair(c, bodies);
+    const Vec3 dp = pair.a->dp - pair.b->dp;
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& p = c.points[k];
+      const Vec3 ds = dp + pair.a->dq * p.rA - pair.b->dq * p.rB;
+      const double s = p.baseSeparation + c.normal.dot(ds);
+      double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
+      if (s > 0.0) {
+        bias = s * invH; // speculative: may close the gap in this substep, no more
+      } else if (useBias) {
+        bias = std::max(p.softness.biasRate * s, -settings.pushSpeed);
+        massScale = p.softness.massScale;
+        impulseScale = p.softness.impulseScale;
+      }
+      const double vn = c.normal.dot(pair.relativeVelocity(p.rA, p.rB));
+      const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+      const double updated = std::max(p.normalImpulse + impulse, 0.0);
+      const double applied = updated - p.normalImpulse;
+      p.normalImpulse = updated;
+      p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
+      pair.apply(applied * c.normal, p.rA, p.rB);
+    }
+    for (int k = 0; k < c.count; ++k) {
+      ConstraintPoint& p = c.points[k];
+      const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
+      const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
+      double t0 = old0 - p.tangentMass[0] * c.tangent1.dot(vr);
+      double t1 = old1 - p.tangentMass[1] * c.tangent2.dot(vr);
+      const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
+      const double length = std::sqrt(t0 * t0 + t1 * t1);
+      p.slides = length > limit;
+      if (p.slides) {
+        const double scale = length > 0.0 ? limit / length : 0.0;
+        t0 *= scale;
+        t1 *= scale;
+      }
+      p.tangentImpulse[0] = t0;
+      p.tangentImpulse[1] = t1;
+      pair.apply((t0 - old0) * c.tangent1 + (t1 - old1) * c.tangent2, p.rA, p.rB);
+    }
+  }
+}
+
+void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+                      const SolveSettings& settings) {
+  // Gauss-Seidel passes: the points of a face impact share the body's rotation, and one pass leaves
+  // a face landing 15 % short of e (measured: 0.77 for e = 0.9); the passes converge to the block
+  // solution, each point reaching -e times its approach speed or leaving with no impulse.
+  for (int pass = 0; pass < settings.restitutionPasses; ++pass) {
+    for (ContactConstraint& c : constraints) {
+      if (c.restitution == 0.0) {
+        continue;
+      }
+      Pair pair(c, bodies);
+      for (int k = 0; k < c.count; ++k) {
+        ConstraintPoint& p = c.points[k];
+        if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0.0) {
+          continue;
+        }
+        const double vn = c.normal.dot(pair.relativeVelocity(p.rA, p.rB));
+        const double impulse = -p.normalMass * (vn + c.restitution * p.approachSpeed);
+        const double updated = std::max(p.normalImpulse + impulse, 0.0);
+        const double applied = updated - p.normalImpulse;
+        p.normalImpulse = updated;
+        p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
+        pair.apply(applied * c.normal, p.rA, p.rB);
+      }
+    }
+  }
+}
+
+} // namespace armour::contact

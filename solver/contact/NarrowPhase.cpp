@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "contact/NarrowPhase.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace armour::contact {
+
+double samplesInHalfSpaces(const ContactShape& a, const ContactPose& pa, const HalfSpaces& solid, double margin,
+                           std::vector<ContactPoint>& out) {
+  // A sample is inside when it is below all the faces, at the depth of the nearest face; within the
+  // margin outside, the largest face distance is a lower bound of its gap (exact beside a face).
+  const std::span<const Vec3> normals = solid.normals;
+  const std::span<const double> offsets = solid.offsets;
+  const double sA = pa.scale;
+  const Quat& qA = pa.orientation;
+  const Vec3& xA = pa.position;
+  const Mat3& RA = pa.rotation;
+  const auto& samplesA = *a.samples;
+  const SampleBuckets& bk = *a.buckets;
+  double maxOverlap = 0.0;
+  // Visit only the buckets that reach into the region and below every face.
+  const Mat3 toLocal = RA.transpose();
+  const Vec3 regionCentre = toLocal * (solid.region.centre() - xA) / sA;
+  const Vec3 regionHalf = toLocal.cwiseAbs() * (0.5 * solid.region.size() + Vec3::Constant(margin)) / sA;
+  const Vec3 cellHalf = 0.5 * bk.cell;
+  forBucketsNear(bk, regionCentre - regionHalf, regionCentre + regionHalf, [&](int cell, const Vec3& low) {
+    const Vec3 worldCentre = xA + qA * (sA * (low + cellHalf));
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+      const double reach = sA * cellHalf.dot((toLocal * normals[k]).cwiseAbs());
+      if (normals[k].dot(worldCentre) - offsets[k] > reach + margin) {
+        return; // the whole bucket is outside this face
+      }
+    }
+    for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
+      const std::uint32_t i = bk.samples[j];
+      const Vec3 X = xA + RA * (sA * samplesA.positions()[i]);
+      double phi = -std::numeric_limits<double>::infinity();
+      std::size_t nearest = 0;
+      for (std::size_t k = 0; k < normals.size(); ++k) {
+        const double d = normals[k].dot(X) - offsets[k];
+        if (d > phi) {
+          phi = d;
+          nearest = k;
+        }
+      }
+      if (phi < 0.0) {
+        maxOverlap = std::max(maxOverlap, -phi); // engaged or not: the guard rails see every point inside
+      }
+      if (phi < margin) {
+        // Projected tributary area: the pressure acts on the part of the sample's area that faces
+        // the static surface, so a face pressed flat engages exactly its own area.
+        const Vec3& n = normals[nearest];
+        const double area = -sA * sA * (RA * samplesA.areaVectors()[i]).dot(n);
+        if (area > 0.0) {
+          out.push_back({i, X, n, -phi, area});
+        }
+      }
+    }
+  });
+  return maxOverlap;
+}
+
+namespace {
+
+/// Near misses first: in a rough pile most candidate pairs never touch (the boxes overlap, the
+/// bodies do not: a rock under a Core-Loc's box but between its legs). A ball of radius R around a
+/// body's centroid holds the body; if the other body's true distance at that centre exceeds
+/// R + margin, they are apart (LevelSet::distanceLowerBound), for either body.
+bool apart(const ContactShape& a, const ContactPose& pa, const ContactShape& b, const ContactPose& pb, double margin) {
+  for (int dir = 0; dir < 2; ++dir) {
+    const ContactPose& probe = dir == 0 ? pa : pb;
+    const ContactPose& target = dir == 0 ? pb : pa;
+    const ContactShape& ps = dir == 0 ? a : b;
+    const ContactShape& ts = dir == 0 ? b : a;
+    const double st = target.scale;
+    const Vec3 centre = target.orientation.conjugate() * (probe.position - target.position) / st;
+    if (ts.levelSet->distanceLowerBound(centre) > (ps.radius * probe.scale) / st + margin / st) {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// One direction of a body pair: the probe's samples in the target's level set.
+void probeSamples(const ContactShape& ps, const ContactPose& probe, const ContactShape& ts, const ContactPose& target,
+                  double weight, std::uint32_t keyBit, bool flip, double margin, double& maxOverlap,
+                  std::vector<ContactPoint>& out) {
+  const double sp = probe.scale;
+  const double st = target.scale;
+  const Mat3& Rp = probe.rotation;
+  const Vec3& xp = probe.position;
+  const Mat3& Rt = target.rotation;
+  const Vec3& xt = target.position;
+  const auto& samples = *ps.samples;
+  const LevelSet& ls = *ts.levelSet;
+  const double m = margin / st; // the margin in the target's unscaled frame
+  // Probe frame (unscaled) -> target frame (unscaled): L = Rrel p + trel.
+  const Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
+  const Vec3 trel = Rt.transpose() * (xp - xt) / st;
+  // phi < m needs L within the target's mesh bounds grown by sqrt(3) h + m (LevelSet::mayPenetrate).
+  const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * ls.cellSize() + m);
+  const Vec3 targetLo = ls.meshBounds().min - grow;
+  const Vec3 targetHi = ls.meshBounds().max + grow;
+  // The target's grown mesh box (an oriented box) seen from the probe's unscaled body frame, as an
+  // axis-aligned box there: tighter than the target's world box.
+  const Mat3 toProbe = Rp.transpose() * Rt * (st / sp);
+  const Vec3 centre = toProbe * (0.5 * (targetLo + targetHi)) + Rp.transpose() * (xt - xp) / sp;
+  const Vec3 half = toProbe.cwiseAbs() * (0.5 * (targetHi - targetLo));
+  const double h = ls.cellSize();
+  const SampleBuckets& bk = *ps.buckets;
+  forBucketsNear(bk, centre - half, centre + half, [&](int cell, const Vec3& /*low*/) {
+    // Whole bucket first, by the sphere around its samples (radius r, centre c, in the target
+    // frame): an interpolated phi < m at x needs a true distance below sqrt(3) h + m there, and the
+    // true distance at x is at least that at c minus r; so a lower bound of the distance at c
+    // above r + sqrt(3) h + m rules out the whole bucket.
+    const Vec3 bc = Rrel * bk.sphereCentre[cell] + trel;
+    const double r = bk.sphereRadius[cell] * (sp / st);
+    if (ls.distanceLowerBound(bc) - r > std::sqrt(3.0) * h + m) {
+      return;
+    }
+    for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
+      const std::uint32_t i = bk.samples[j];
+      const Vec3 L = Rrel * samples.positions()[i] + trel;
+      if ((L.array() < targetLo.array()).any() || (L.array() > targetHi.array()).any() || !(ls.value(L) < m)) {
+        continue;
+      }
+      const LevelSetQuery q = ls.query(L);
+      if (q.phi < 0.0) {
+        // Engaged or not, the guard rails see every point inside: past the other body's middle a
+        // point faces the wrong way and is not engaged, but the overlap is real.
+        maxOverlap = std::max(maxOverlap, -q.phi * st);
+      }
+      if (q.phi < m && q.normal.squaredNorm() > 0.0) {
+        const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
+        const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
+        // The direction's weight scales the tributary area (k = E_p a / L is linear in a).
+        const double area = -weight * sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
+        if (area > 0.0) {
+          out.push_back({keyBit | i, X, flip ? Vec3(-n) : n, -q.phi * st, area});
+        }
+      }
+    }
+  });
+}
+
+} // namespace
+
+double samplesInLevelSets(const ContactShape& a, const ContactPose& pa, const ContactShape& b, const ContactPose& pb,
+                          double margin, std::vector<ContactPoint>& out) {
+  double maxOverlap = 0.0;
+  if (apart(a, pa, b, pb, margin)) {
+    return maxOverlap;
+  }
+  // Both directions, so that both bodies' edges and corners are detected, each weighted by its
+  // probe's sample density: w_A = h_B^2 / (h_A^2 + h_B^2), h = sample spacing (a fixed fraction of
+  // Dn), so w_A + w_B = 1. Equal bodies get half each (symmetric in A and B); a unit on one 4.6
+  // times its size (mass ratio 100) is measured mostly by its own fine samples, not by the few
+  // coarse samples of the big one that fall on its small face. B's points are flipped to push A.
+  const double hA2 = pa.dn * pa.dn, hB2 = pb.dn * pb.dn;
+  probeSamples(a, pa, b, pb, hB2 / (hA2 + hB2), 0u, false, margin, maxOverlap, out);
+  probeSamples(b, pb, a, pa, hA2 / (hA2 + hB2), kReverseSampleBit, true, margin, maxOverlap, out);
+  return maxOverlap;
+}
+
+bool anySampleWithin(const ContactShape& probe, const ContactPose& pp, const ContactShape& target,
+                     const ContactPose& pt, double clearance) {
+  const auto& ls = *target.levelSet;
+  const double reach = target.radius * pt.scale + clearance;
+  const Vec3 grow = Vec3::Constant(clearance / pt.scale + std::sqrt(3.0) * ls.cellSize());
+  const Vec3 lo = ls.meshBounds().min - grow, hi = ls.meshBounds().max + grow;
+  const Mat3 toTarget = pt.rotation.transpose() * pp.rotation * (pp.scale / pt.scale);
+  const Vec3 offset = pt.rotation.transpose() * (pp.position - pt.position) / pt.scale;
+  const Vec3 probeInTarget = pp.position - pt.position;
+  for (const Vec3& p : probe.samples->positions()) {
+    const Vec3 X = probeInTarget + pp.rotation * (pp.scale * p);
+    if (X.squaredNorm() > reach * reach) continue;
+    const Vec3 L = toTarget * p + offset;
+    if ((L.array() < lo.array()).any() || (L.array() > hi.array()).any()) continue;
+    if (ls.value(L) * pt.scale < clearance) return true;
+  }
+  return false;
+}
+
+} // namespace armour::contact

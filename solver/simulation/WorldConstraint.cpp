@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The constraint solver's step (contact.solver: constraint; docs/theory.md, "The constraint
+// solver"): loads at the step start -> boxes -> broad phase -> narrow phase with a speculative
+// margin and contact reduction (parallel over pairs, each writing its own manifold) -> constraints
+// with warm starts (serial, pair order) -> substeps of {integrate velocities, warm start, solve,
+// integrate positions, relax} -> restitution -> history, contact records -> sleep and guard rails.
+// The solve is serial Gauss-Seidel in constraint order: 1 and N threads give the same bits.
+#include "simulation/World.hpp"
+
+#include "core/Error.hpp"
+#include "dynamics/Integrator.hpp"
+#include "simulation/WorldInternal.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace armour::simulation {
+
+using detail::kPlaneBit;
+using detail::kStaticBits;
+
+/// One candidate pair's reduced contact patches: written by one thread, read serially.
+struct World::PairManifold {
+  contact::BodyPair key;
+  std::vector<contact::ContactPatchPoints> patches;
+  double maxOverlap = 0.0; ///< deepest sample inside, for the guard rails (unit: m)
+};
+
+namespace {
+
+/// Hysteresis of the contact reduction (ContactReduction.hpp): a point kept in the previous step
+/// stays unless another is deeper by this fraction of Dn (ours; 1 mm on a 1 m cube, ten times the
+/// resting overlap at E_p = 1e8 Pa).
+constexpr double kKeepDepthPerDn = 1e-3;
+
+/// The friction history of sample `key` in a pair's history (sorted by key), or null.
+const contact::PointHistory* findPoint(const std::vector<std::pair<std::uint32_t, contact::PointHistory>>* h,
+                                       std::uint32_t key) {
+  if (h == nullptr) {
+    return nullptr;
+  }
+  auto it = std::lower_bound(h->begin(), h->end(), key, [](const auto& e, std::uint32_t k) { return e.first < k; });
+  return it != h->end() && it->first == key ? &it->second : nullptr;
+}
+
+} // namespace
+
+void World::collideConstraint(std::vector<PairManifold>& manifolds) {
+  std::vector<contact::BodyPair> keys;
+  candidatePairs(keys);
+  manifolds.assign(keys.size(), PairManifold{});
+  const ConstraintSettings& cs = settings_.constraint;
+  contact::ReductionSettings reduction;
+  reduction.patchAngle = cs.patchAngle;
+#pragma omp parallel for schedule(dynamic, 1) if (keys.size() >= 16)
+  for (std::size_t w = 0; w < keys.size(); ++w) {
+    PairManifold& m = manifolds[w];
+    m.key = keys[w];
+    const BodyId a = m.key.first;
+    std::vector<contact::ContactPoint> points;
+    if ((m.key.second & kStaticBits) != 0) {
+      const bool isPlane = (m.key.second & kPlaneBit) != 0;
+      const std::uint32_t index = m.key.second & ~kStaticBits;
+      const StaticPlane* plane = isPlane ? &planes_[index] : nullptr;
+      const double planeOffset = isPlane ? plane->normal.dot(plane->point) : 0.0;
+      contact::HalfSpaces solid;
+      if (isPlane) {
+        solid = {std::span<const Vec3>(&plane->normal, 1), std::span<const double>(&planeOffset, 1), boxes_[a]};
+      } else {
+        solid = {convex_[index].normals, convex_[index].offsets, convex_[index].box};
+      }
+      const double margin = cs.speculativeMargin * bodyDn(a);
+      m.maxOverlap = contact::samplesInHalfSpaces(contactShape(a), contactPose(a), solid, margin, points);
+    } else {
+      const BodyId b = m.key.second;
+      const double margin = cs.speculativeMargin * std::min(bodyDn(a), bodyDn(b));
+      m.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b),
+                                                 margin, points);
+    }
+    // The keys this pair's patches held in the previous step (its history, sorted by key).
+    std::vector<std::uint32_t> kept;
+    if (const History* previous = findPairHistory(m.key)) {
+      kept.reserve(previous->size());
+      for (const auto& [key, h] : *previous) kept.push_back(key);
+    }
+    contact::ReductionSettings pairReduction = reduction;
+    pairReduction.keepDepth = kKeepDepthPerDn * bodyDn(a);
+    contact::reduceContacts(points, pairReduction, kept, m.patches);
+  }
+}
+
+void World::syncSolverBodies(bool inertia) {
+  const auto awake = bodies_.awakeBodies();
+  for (std::size_t s = 0; s < awake.size(); ++s) {
+    const BodyId b = awake[s];
+    contact::SolverBody& sb = solverBodies_[s + 1];
+    sb.v = bodies_.velocity(b);
+    sb.w = bodies_.worldAngularVelocity(b);
+    sb.dp = bodies_.position(b) - stepStartPosition_[b];
+    sb.dq = bodies_.orientation(b) * stepStartOrientation_[b].conjugate();
+    if (inertia) {
+      sb.invMass = bodies_.inverseMass(b);
+      sb.invInertia = bodies_.inverseInertiaWorld(b);
+    }
+  }
+}
+
+void World::writeSolverVelocities() {
+  const auto awake = bodies_.awakeBodies();
+  for (std::size_t s = 0; s < awake.size(); ++s) {
+    const contact::SolverBody& sb = solverBodies_[s + 1];
+    bodies_.setVelocity(awake[s], sb.v);
+    bodies_.setWorldAngularVelocity(awake[s], sb.w);
+  }
+}
+
+void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
+  const ConstraintSettings& cs = settings_.constraint;
+  constraints_.clear();
+  constraintPair_.clear();
+  for (std::size_t i = 0; i < manifolds.size(); ++i) {
+    PairManifold& m = manifolds[i];
+    guardOverlap(m.key, m.maxOverlap, std::numeric_limits<double>::infinity());
+    if (m.patches.empty()) {
+      continue;
+    }
+    const History* previous = findPairHistory(m.key);
+    const BodyId a = m.key.first;
+    const bool isStatic = (m.key.second & kStaticBits) != 0;
+    MaterialId materialB = 0;
+    if (isStatic) {
+      const std::uint32_t index = m.key.second & ~kStaticBits;
+      materialB = (m.key.second & kPlaneBit) != 0 ? planes_[index].material : convex_[index].material;
+    } else {
+      materialB = bodyMaterial_[m.key.second];
+    }
+    const Material& ma = materials_[bodyMaterial_[a]];
+    const Material& mb = materials_[materialB];
+    const Vec3& xA = bodies_.position(a);
+    // The penalty law's stiffness (section 6 of docs/theory.md): E_p A / L for the patch.
+    const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
+    const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
+    for (const auto& patch : m.patches) {
+      contact::ContactConstraint c;
+      c.bodyA = solverIndex_[a];
+      c.bodyB = isStatic ? 0 : solverIndex_[m.key.second];
+      c.normal = patch.normal;
+      contact::tangentBasis(c.normal, c.tangent1, c.tangent2);
+      c.friction = std::min(ma.frictionStatic, mb.frictionStatic);
+      c.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
+      c.restitution = std::min(ma.restitution, mb.restitution);
+      c.count = patch.count;
+      c.stiffness = modulus * patch.area / lengthScale / patch.count;
+      c.dampingRatio = cs.dampingRatio;
+      for (int k = 0; k < patch.count; ++k) {
+        contact::ConstraintPoint& p = c.points[k];
+        p.key = patch.keys[k];
+        p.rA = patch.points[k] - xA;
+        p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
+        p.baseSeparation = -patch.depths[k] - c.normal.dot(p.rA - p.rB);
+        if (const contact::PointHistory* old = findPoint(previous, p.key)) {
+          p.normalImpulse = old->normalImpulse;
+          p.tangentImpulse[0] = old->tangentImpulse.dot(c.tangent1);
+          p.tangentImpulse[1] = old->tangentImpulse.dot(c.tangent2);
+          p.sliding = old->sliding;
+        }
+      }
+      contact::prepareConstraint(c, solverBodies_, h);
+      constraints_.push_back(c);
+      constraintPair_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+}
+
+void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, double h) {
+  const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
+  stats_ = {};
+  stats_.candidatePairs = manifolds.size();
+  contactEnergy_ = 0.0; // the soft constraints' elastic energy is not tracked (docs/theory.md)
+  patches_.clear();
+  contactCount_.assign(nBodies, 0);
+  maxContactForce_.assign(nBodies, 0.0);
+  for (const auto& m : manifolds) {
+    stats_.maxOverlap = std::max(stats_.maxOverlap, m.maxOverlap);
+  }
+  auto forces = bodies_.forces();
+  auto torques = bodies_.torques();
+  PairHistories next;
+  std::size_t c = 0;
+  while (c < constraints_.size()) {
+    const std::uint32_t pairIndex = constraintPair_[c];
+    const contact::BodyPair key = manifolds[pairIndex].key;
+    const BodyId a = key.first;
+    const bool isStatic = (key.second & kStaticBits) != 0;
+    History history;
+    ContactPatch record;
+    record.bodyA = a;
+    record.bodyB = isStatic ? -1 : static_cast<std::int64_t>(key.second);
+    Vec3 weighted = Vec3::Zero();
+    for (; c < constraints_.size() && constraintPair_[c] == pairIndex; ++c) {
+      const contact::ContactConstraint& k = constraints_[c];
+      for (int j = 0; j < k.count; ++j) {
+        const contact::ConstraintPoint& p = k.points[j];
+        contact::PointHistory ph;
+        ph.sliding = p.slides;
+        ph.normalImpulse = p.normalImpulse;
+        ph.tangentImpulse = p.tangentImpulse[0] * k.tangent1 + p.tangentImpulse[1] * k.tangent2;
+        history.emplace_back(p.key, ph);
+        // Mean force over the last substep on A (B gets minus it).
+        const Vec3 force = (p.normalImpulse * k.normal + ph.tangentImpulse) / h;
+        const Vec3 point = bodies_.position(a) + p.rA;
+        forces[a] += force;
+        torques[a] += p.rA.cross(force);
+        if (!isStatic) {
+          forces[key.second] -= force;
+          torques[key.second] -= (point - bodies_.position(key.second)).cross(force);
+        }
+        const double fn = p.normalImpulse / h;
+        record.force += force;
+        record.normalForce += fn;
+        weighted += fn * point;
+        ++record.points;
+        maxContactForce_[a] = std::max(maxContactForce_[a], force.norm());
+        if (!isStatic) maxContactForce_[key.second] = std::max(maxContactForce_[key.second], force.norm());
+      }
+    }
+    contactCount_[a] += record.points;
+    if (!isStatic) contactCount_[key.second] += record.points;
+    stats_.contactPoints += static_cast<std::size_t>(record.points);
+    if (settings_.recordContacts && record.points > 0) {
+      record.point = record.normalForce > 0.0 ? Vec3(weighted / record.normalForce) : bodies_.position(a);
+      patches_.push_back(record);
+    }
+    std::sort(history.begin(), history.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    next.emplace_back(key, std::move(history));
+  }
+  keepSleepingHistory(next);
+}
+
+void World::stepConstraint() {
+  const double dt = timeStep();
+  const int substeps = std::max(1, settings_.constraint.substeps);
+  const double h = dt / substeps;
+  auto clock = StepProfile::Clock::now();
+  // The external loads of the step's start state, held over its substeps.
+  bodies_.clearForces();
+  applyLoadStages(time_);
+  const double powerBefore = externalPower();
+  clock = profile_.add(Stage::Loads, clock);
+  updateBoxes();
+  clock = profile_.add(Stage::Boxes, clock);
+  std::vector<PairManifold> manifolds;
+  collideConstraint(manifolds);
+  clock = profile_.add(Stage::NarrowPhase, clock);
+
+  const auto n = bodies_.size();
+  stepStartPosition_.resize(n);
+  stepStartOrientation_.resize(n);
+  solverIndex_.assign(n, 0);
+  const auto awake = bodies_.awakeBodies();
+  solverBodies_.assign(awake.size() + 1, contact::SolverBody{});
+  for (std::size_t s = 0; s < awake.size(); ++s) {
+    solverIndex_[awake[s]] = static_cast<std::int32_t>(s + 1);
+    stepStartPosition_[awake[s]] = bodies_.position(awake[s]);
+    stepStartOrientation_[awake[s]] = bodies_.orientation(awake[s]);
+  }
+  syncSolverBodies(true);
+  buildConstraints(manifolds, h);
+  clock = profile_.add(Stage::Prepare, clock);
+
+  const contact::SolveSettings solve{settings_.constraint.pushSpeed, settings_.constraint.restitutionThreshold};
+  for (int i = 0; i < substeps; ++i) {
+    dynamics::kick(bodies_, h, settings_.gravity);
+    clock = profile_.add(Stage::Integrate, clock);
+    syncSolverBodies(true);
+    contact::warmStart(constraints_, solverBodies_);
+    contact::solveContacts(constraints_, solverBodies_, h, solve, true);
+    writeSolverVelocities();
+    clock = profile_.add(Stage::Solve, clock);
+    dynamics::drift(bodies_, h);
+    clock = profile_.add(Stage::Integrate, clock);
+    syncSolverBodies(true);
+    contact::solveContacts(constraints_, solverBodies_, h, solve, false);
+    writeSolverVelocities();
+    clock = profile_.add(Stage::Solve, clock);
+  }
+  syncSolverBodies(false);
+  contact::applyRestitution(constraints_, solverBodies_, solve);
+  writeSolverVelocities();
+  storeConstraintResults(manifolds, h);
+  clock = profile_.add(Stage::Solve, clock);
+  externalWork_ += 0.5 * dt * (powerBefore + externalPower());
+  time_ += dt;
+  ++steps_;
+  forcesReady_ = false;
+  finishStep(dt, clock);
+}
+
+} // namespace armour::simulation

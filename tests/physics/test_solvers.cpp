@@ -1,0 +1,330 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The physics suite of issue 22, run for both contact solvers (contact.solver: penalty and
+// constraint) on the same level-set narrow phase, with the issue's targets:
+//   block on an incline below the friction angle     drift < 1e-4 m over 60 s
+//   block on an incline above it                       acceleration within 2 %
+//   drop on a floor                                    rebound ratio within 0.05 of e
+//   tower of 10 cubes                                  < 1 mm over 60 s
+//   a 100:1 mass ratio stack                           at rest (< 1 mm over 10 s)
+//   largest and smallest steps                         refused with the limit, or stable
+// and the constraint solver's own: 1 and 2 threads bit-identical, a restart from a checkpoint
+// bit-identical, warm starts that carry a resting contact.
+
+#include "core/Error.hpp"
+#include "geometry/ShapeLibrary.hpp"
+#include "simulation/CheckpointFile.hpp"
+#include "simulation/World.hpp"
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <random>
+#include <string>
+
+using namespace armour;
+using namespace armour::simulation;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+#ifdef ARMOUR_LONG_TESTS
+constexpr bool kLong = true; // test_solvers_long (label slow): the issue's full durations for both solvers
+#else
+constexpr bool kLong = false;
+#endif
+
+/// Simulated seconds of a long test: the issue's `full` for the constraint solver (and in the slow
+/// variant for both); in CI the penalty solver, 20 to 40 times slower per simulated second here,
+/// runs `ci` seconds of it.
+double seconds(ContactSolverKind k, double full, double ci) {
+  return kLong || k == ContactSolverKind::Constraint ? full : ci;
+}
+
+std::string solverName(ContactSolverKind k) { return k == ContactSolverKind::Penalty ? "penalty" : "constraint"; }
+
+WorldSettings settingsFor(ContactSolverKind kind, bool sleep = false) {
+  WorldSettings s;
+  s.solver = kind;
+  s.sleep.enabled = sleep;
+  return s;
+}
+
+Material concrete(double restitution, double mu) {
+  Material m;
+  m.name = "concrete";
+  m.restitution = restitution;
+  m.frictionStatic = m.frictionDynamic = mu;
+  return m;
+}
+
+/// A world with one material and a unit cube shape (scaled per body).
+struct Cubes {
+  World world;
+  MaterialId material = 0;
+  ShapeId cube = 0;
+  Cubes(const WorldSettings& settings, const Material& m) : world(settings) {
+    material = world.addMaterial(m);
+    geometry::ShapeRequest r;
+    r.volume = 1.0;
+    cube = world.addShape("cube", geometry::makeShape("cube", r));
+  }
+  BodyId add(const Vec3& x, double scale = 1.0, const Quat& q = Quat::Identity(), const Vec3& v = Vec3::Zero()) {
+    BodySpec b;
+    b.shape = cube;
+    b.material = material;
+    b.scale = scale;
+    b.position = x;
+    b.orientation = q;
+    b.velocity = v;
+    return world.addBody(b);
+  }
+  void floor(const Vec3& normal = Vec3::UnitZ()) { world.addPlane({"floor", Vec3::Zero(), normal, material}); }
+};
+
+class BothSolvers : public ::testing::TestWithParam<ContactSolverKind> {};
+
+std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) { return solverName(info.param); }
+
+/// A cube on a plane inclined at theta (descending towards +x).
+struct Slope : Cubes {
+  BodyId block = 0;
+  Vec3 downhill;
+  Slope(ContactSolverKind kind, double theta, double mu) : Cubes(settingsFor(kind), concrete(0.3, mu)) {
+    const Vec3 normal(std::sin(theta), 0, std::cos(theta));
+    downhill = Vec3(std::cos(theta), 0, -std::sin(theta));
+    floor(normal);
+    block = add(0.5 * normal, 1.0, Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())));
+  }
+  [[nodiscard]] double along() const { return world.bodies().position(block).dot(downhill); }
+};
+
+} // namespace
+
+TEST_P(BothSolvers, BlockOnInclineBelowFrictionAngleDoesNotCreep) {
+  // tan 25 deg = 0.466 < mu = 0.75: static friction holds the block. After 1 s of settling it may
+  // not move 1e-4 m in 60 s (issue 22). Penalty: the friction springs hold a constant stretch;
+  // constraint: the friction impulse cancels the tangential velocity at every substep.
+  Slope s(GetParam(), 25.0 * std::numbers::pi / 180.0, 0.75);
+  s.world.advanceTo(1.0);
+  const double x0 = s.along();
+  s.world.advanceTo(1.0 + seconds(GetParam(), 60.0, 10.0));
+  const double drift = std::abs(s.along() - x0);
+  RecordProperty("drift_m", std::to_string(drift));
+  EXPECT_LT(drift, 1e-4) << solverName(GetParam());
+  EXPECT_LT(std::abs(s.along()), 1e-3) << "settling moves it by the elastic stretch only";
+}
+
+TEST_P(BothSolvers, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAcceleration) {
+  // theta = 35 deg, mu = 0.4: a = g (sin theta - mu cos theta) = 2.413 m/s^2, within 2 % (issue 22),
+  // from the velocity gained between 0.5 and 1.5 s.
+  const double theta = 35.0 * std::numbers::pi / 180.0;
+  Slope s(GetParam(), theta, 0.4);
+  s.world.advanceTo(0.5);
+  const double v0 = s.world.bodies().velocity(s.block).dot(s.downhill);
+  s.world.advanceTo(1.5);
+  const double v1 = s.world.bodies().velocity(s.block).dot(s.downhill);
+  const double expected = kG * (std::sin(theta) - 0.4 * std::cos(theta));
+  RecordProperty("acceleration_relative_error", std::to_string((v1 - v0) / expected - 1.0));
+  EXPECT_NEAR(v1 - v0, expected, 0.02 * expected) << solverName(GetParam());
+}
+
+TEST_P(BothSolvers, DropReboundsWithTheTargetRestitution) {
+  // A cube dropped flat from 0.5 m (3.1 m/s): rebound speed / impact speed within 0.05 of e.
+  for (double e : {0.05, 0.5, 0.9}) {
+    Cubes s(settingsFor(GetParam()), concrete(e, 0.5));
+    s.floor();
+    const BodyId b = s.add(Vec3(0, 0, 1.0));
+    double impact = 0.0, rebound = 0.0, tContact = -1.0;
+    while (s.world.time() < 2.0) {
+      const double vz = s.world.bodies().velocity(b).z();
+      s.world.step();
+      if (tContact < 0.0 && s.world.lastStep().contactPoints > 0 && s.world.bodies().velocity(b).z() > vz) {
+        tContact = s.world.time();
+        impact = -vz;
+      }
+      if (tContact >= 0.0) {
+        rebound = std::max(rebound, s.world.bodies().velocity(b).z());
+        if (s.world.time() > tContact + 0.05) break;
+      }
+    }
+    ASSERT_GT(impact, 3.0) << "e = " << e;
+    RecordProperty("rebound_ratio_e" + std::to_string(static_cast<int>(100 * e)), std::to_string(rebound / impact));
+    EXPECT_NEAR(rebound / impact, e, 0.05) << solverName(GetParam()) << ", e = " << e;
+  }
+}
+
+TEST_P(BothSolvers, TowerOfTenCubesStandsStill) {
+  // Ten unit cubes, 1 mm gaps and 1 cm alternating offsets, sleeping off: after 2 s of settling no
+  // cube moves 1 mm in 60 s (issue 22). The penalty solver needs 500 s of a core for it: in CI it is
+  // test_stacks_at_rest's TowerOfTenCubesStandsStillWithoutSleeping, here only in the slow variant.
+  if (!kLong && GetParam() == ContactSolverKind::Penalty) GTEST_SKIP() << "penalty: test_solvers_long";
+  Cubes s(settingsFor(GetParam()), concrete(0.3, 0.6));
+  s.floor();
+  std::vector<BodyId> blocks;
+  for (int k = 0; k < 10; ++k) blocks.push_back(s.add(Vec3(k % 2 == 0 ? 0.0 : 0.01, 0.0, 0.5 + k * 1.001)));
+  s.world.advanceTo(2.0);
+  std::vector<Vec3> start;
+  for (BodyId b : blocks) start.push_back(s.world.bodies().position(b));
+  s.world.advanceTo(62.0);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    largest = std::max(largest, (s.world.bodies().position(blocks[i]) - start[i]).norm());
+  }
+  RecordProperty("largest_move_m", std::to_string(largest));
+  EXPECT_LT(largest, 1e-3) << solverName(GetParam());
+  EXPECT_GT(s.world.bodies().position(blocks.back()).z(), 9.4) << "the tower stands";
+}
+
+TEST_P(BothSolvers, MassRatio100StackRests) {
+  // The 4.64 m cube (100 x the mass) balanced on the 1 m cube: after 5 s of settling neither moves
+  // 1 mm in 10 s and the heavy one stays upright.
+  const double big = std::cbrt(100.0);
+  Cubes s(settingsFor(GetParam()), concrete(0.3, 0.6));
+  s.floor();
+  const BodyId light = s.add(Vec3(0, 0, 0.5));
+  const BodyId heavy = s.add(Vec3(0, 0, 1.0 + 0.5 * big), big);
+  s.world.advanceTo(5.0);
+  const Vec3 l0 = s.world.bodies().position(light), h0 = s.world.bodies().position(heavy);
+  s.world.advanceTo(15.0);
+  const double moved = std::max((s.world.bodies().position(light) - l0).norm(),
+                                (s.world.bodies().position(heavy) - h0).norm());
+  RecordProperty("largest_move_m", std::to_string(moved));
+  EXPECT_LT(moved, 1e-3) << solverName(GetParam());
+  EXPECT_NEAR(s.world.bodies().position(heavy).z(), 1.0 + 0.5 * big, 0.01) << "the heavy cube stays on top";
+}
+
+INSTANTIATE_TEST_SUITE_P(Solvers, BothSolvers,
+                         ::testing::Values(ContactSolverKind::Penalty, ContactSolverKind::Constraint), paramName);
+
+// ---------------------------------------------------------------------------------------------
+// The constraint solver's own guarantees.
+// ---------------------------------------------------------------------------------------------
+
+TEST(ConstraintSolver, StepsOutsideTheMeasuredRangeAreRefusedWithTheLimit) {
+  for (double dt : {0.1, 1e-8}) {
+    WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
+    settings.timeStep = dt;
+    Cubes s(settings, concrete(0.3, 0.5));
+    s.floor();
+    s.add(Vec3(0, 0, 1));
+    try {
+      s.world.step();
+      ADD_FAILURE() << "a step of " << dt << " s must be refused";
+    } catch (const core::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("0.03333"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ConstraintSolver, LargestStepDropsAndRestsACube) {
+  // At the largest step (1/30 s) a cube dropped from 2 m lands, stops and stays: at 3 s its speed is
+  // below 1 mm/s and it sits on its face within 2 mm.
+  WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
+  settings.timeStep = kMaxConstraintStep;
+  Cubes s(settings, concrete(0.05, 0.6));
+  s.floor();
+  const BodyId b = s.add(Vec3(0, 0, 2.5));
+  s.world.advanceTo(3.0);
+  EXPECT_LT(s.world.bodies().velocity(b).norm(), 1e-3);
+  EXPECT_NEAR(s.world.bodies().position(b).z(), 0.5, 2e-3);
+}
+
+TEST(ConstraintSolver, SmallestUsefulStepHoldsTheRestingState) {
+  // dt = 1e-5 s (500 x below the default): a resting cube stays within 0.1 mm over 0.2 s.
+  WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
+  settings.timeStep = 1e-5;
+  Cubes s(settings, concrete(0.3, 0.6));
+  s.floor();
+  const BodyId b = s.add(Vec3(0, 0, 0.5));
+  s.world.advanceTo(0.2);
+  EXPECT_NEAR(s.world.bodies().position(b).z(), 0.5, 1e-4);
+}
+
+namespace {
+
+/// A loose pile of 18 cubes (3 x 3 x 2, small random tilts) under the constraint solver.
+struct Pile : Cubes {
+  explicit Pile(bool sleep = false) : Cubes(settingsFor(ContactSolverKind::Constraint, sleep), concrete(0.3, 0.6)) {
+    floor();
+    std::mt19937_64 rng(11);
+    for (int k = 0; k < 2; ++k) {
+      for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+          const double tilt = 0.2 * ((rng() >> 11) * 0x1.0p-53 - 0.5);
+          add(Vec3(1.05 * i + 0.3 * k, 1.05 * j, 0.52 + 1.04 * k), 1.0,
+              Quat(Eigen::AngleAxisd(tilt, Vec3(1, 1, 0).normalized())));
+        }
+      }
+    }
+  }
+  [[nodiscard]] std::vector<double> state() const {
+    std::vector<double> out;
+    const auto& b = world.bodies();
+    for (BodyId i = 0; i < b.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        out.push_back(b.position(i)[k]);
+        out.push_back(b.velocity(i)[k]);
+        out.push_back(b.angularMomentumWorld(i)[k]);
+      }
+      out.push_back(b.orientation(i).w());
+    }
+    return out;
+  }
+};
+
+std::vector<double> runPile(int threads) {
+  omp_set_num_threads(threads);
+  Pile p;
+  for (int n = 0; n < 200; ++n) p.world.step();
+  EXPECT_GT(p.world.lastStep().contactPoints, 30u) << "the pile must be in contact to test anything";
+  return p.state();
+}
+
+} // namespace
+
+TEST(ConstraintSolver, OneAndTwoThreadsGiveBitIdenticalStates) {
+  const int saved = omp_get_max_threads();
+  const auto one = runPile(1);
+  const auto two = runPile(2);
+  omp_set_num_threads(saved);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "state entry " << i;
+}
+
+TEST(ConstraintSolver, RestartFromACheckpointIsBitIdentical) {
+  // 100 steps, a checkpoint file, 100 more; against a fresh pile restored from the file and run
+  // 100 steps: the same bits (the warm-start impulses are in the checkpoint).
+  Pile straight;
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  Checkpoint c;
+  c.state = straight.world.captureState();
+  const auto path = std::filesystem::temp_directory_path() / "armour-test-constraint-restart.nc";
+  writeCheckpoint(path, c);
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  Pile restarted;
+  restarted.world.restoreState(readCheckpoint(path).state);
+  std::filesystem::remove(path);
+  for (int n = 0; n < 100; ++n) restarted.world.step();
+  const auto a = straight.state(), b = restarted.state();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "state entry " << i;
+}
+
+TEST(ConstraintSolver, WarmStartCarriesTheRestingLoad) {
+  // A cube at rest on the floor: the stored normal impulses per substep sum to its weight times
+  // the substep (within 1 %), so the next step starts from the right force.
+  Cubes s(settingsFor(ContactSolverKind::Constraint), concrete(0.3, 0.6));
+  s.floor();
+  const BodyId b = s.add(Vec3(0, 0, 0.5));
+  s.world.setRecordContacts(true);
+  s.world.advanceTo(1.0);
+  ASSERT_EQ(s.world.contactPatches().size(), 1u);
+  const double weight = s.world.bodies().info(b).mass * kG;
+  EXPECT_NEAR(s.world.contactPatches()[0].normalForce, weight, 0.01 * weight);
+  EXPECT_LE(s.world.contactPatches()[0].points, 4) << "reduced to at most 4 points per patch";
+}
