@@ -148,6 +148,9 @@ void checkScene(const std::string& path, const std::vector<std::string>& sets) {
   // Hydrodynamic loads: the storm file is opened and validated, and must cover the run.
   if (const std::string hydro = hydro::attachLoadStages(*built.world, scene.hydro, scene.duration); !hydro.empty()) {
     std::cout << hydro << "\n";
+    // The records the run will read, each checked as the run would (not the whole file: a storm
+    // of an hour need not be read to check a run of a minute of it).
+    std::cout << hydro::validateStormRecords(scene.hydro, scene.duration) << "\n";
   }
   simulation::World& world = *built.world;
   // Bodies inside each other, which the contact cannot separate and the guard rails do not see.
@@ -404,6 +407,7 @@ void runScene(const RunRequest& o) {
   log->info("checkpoints to {}: {}at the end and when stopped by SIGINT or SIGTERM", checkpointPath.string(), when);
 
   const double dt = world.timeStep();
+  log->info("{}", simulation::describeOutputTiming(scene.output, dt));
   const double end = scene.duration;
   const std::uint64_t firstStep = world.stepCount();
   double maxOverlap = 0.0;

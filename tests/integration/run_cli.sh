@@ -59,6 +59,9 @@ head -n 1 "$out/smoke/run.log" | grep -q "armour [0-9.]* (git .*, 1 threads)" \
 grep -q "  duration = 0.3 s" "$out/smoke/run.log" || fail "resolved settings missing from run.log"
 grep -Eq "finished: t = 0\.(3|2999[0-9]*) s" "$out/smoke/run.log" || fail "no summary in run.log"
 grep -q "final kinetic energy" "$out/smoke/run.log" || fail "no final kinetic energy in run.log"
+# The automatic step need not divide the output intervals; the log says how they relate (issue 23, item 8).
+grep -Eq "time step [0-9.e-]+ s; series every 0.01 s \((exactly )?[0-9.]+ steps\), VTK every 0.1 s \((exactly )?[0-9.]+ steps\): each output is written at the first step at or after its time" \
+  "$out/smoke/run.log" || fail "run.log does not relate the time step to the output intervals"
 [ -f "$out/smoke/final_state.csv" ] || fail "no final_state.csv"
 # ParaView series: frames at 0, 0.1, 0.2 and 0.3 s (vtk_interval 0.1 s), all listed in bodies.pvd.
 [ "$(grep -c '<DataSet' "$out/smoke/bodies.pvd")" -eq 4 ] || fail "bodies.pvd should list 4 frames: $(cat "$out/smoke/bodies.pvd")"
