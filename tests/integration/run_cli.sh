@@ -86,6 +86,14 @@ set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration 
 [ $code -eq 2 ] || fail "--duration -1 accepted (exit $code): $msg"
 set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration 0 -o "$out/x" 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "--duration 0 accepted (exit $code): $msg"
+# A number beyond a double (issue 23, item 13): out of range, as typed, on the command line and in --set.
+set +e; msg=$("$armour" --log-level off run "$scenes/run-smoke.yaml" --duration 1e999 -o "$out/x" 2>&1); code=$?; set -e
+[ $code -ne 0 ] || fail "--duration 1e999 accepted: $msg"
+grep -q -- "--duration: 1e999 is out of range: beyond 1.79769e+308, the largest number a double holds" <<< "$msg" \
+  || fail "--duration 1e999: not called out of range: $msg"
+set +e; msg=$("$armour" --log-level off check "$scenes/run-smoke.yaml" --set duration=1e999 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "--set duration=1e999: expected exit 2, got $code: $msg"
+grep -q "run-smoke.yaml: duration = 1e999: out of range" <<< "$msg" || fail "--set duration=1e999: not called out of range: $msg"
 
 # Bodies that start inside each other trip the overlap guard rail: exit 3, the bodies named, the
 # state at the stop written.
