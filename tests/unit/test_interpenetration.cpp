@@ -34,14 +34,7 @@ protected:
     cube = world->addShape("cube", test::makeBox(1.0, 1.0, 1.0));
   }
   BodyId add(const std::string& name, ShapeId shape, const Vec3& x, const Quat& q = Quat::Identity(), bool fixed = false) {
-    BodySpec b;
-    b.name = name;
-    b.shape = shape;
-    b.material = material;
-    b.position = x;
-    b.orientation = q;
-    b.fixed = fixed;
-    return world->addBody(b);
+    return world->addBody({.name = name, .shape = shape, .material = material, .fixed = fixed, .position = x, .orientation = q});
   }
   /// The message of the refusal, or "" when the state is accepted.
   std::string refusal(const InterpenetrationReport& r) {
