@@ -14,11 +14,13 @@
 /// Estimate (docs/theory.md, "Interpenetration at the start"): each shape carries a lattice of
 /// points at spacing h = Dn / pointsPerDn over its bounds, each with a smoothed inside fraction
 /// w = clamp(1/2 - phi / h, 0, 1) (phi its own level set; w is the share of a slab of thickness h
-/// about the point that lies inside, exact for a plane). A point of body A in body B adds
-/// max(0, w_A + w_B - 1) h^3 to the common volume: for two parallel faces overlapping by delta,
-/// this is delta / h per point of the slab, so the sum is area x delta whatever the lattice's
-/// offset, and exactly zero for faces that only touch. Both directions (A's lattice in B, B's in
-/// A) are averaged. Only lattice points in the overlap of the two world boxes are visited.
+/// about the point that lies inside, exact for a plane). A point of body A in body B adds a share
+/// of h^3 to the common volume: min(w_A, w_B) where it lies deep in either; near both surfaces
+/// max(0, w_A + w_B - 1) for opposite normals (two faces overlapping by delta give delta / h per
+/// point of the slab, so the sum is area x delta whatever the lattice's offset, and exactly zero
+/// for faces that only touch), min(w_A, w_B) for equal normals (the same pose), blended by the
+/// normals' cosine between. Both directions (A's lattice in B, B's in A) are averaged. Only
+/// lattice points in the overlap of the two world boxes are visited.
 ///
 /// Containment: body A's centroid lies inside B (phi_B < 0) while it lies inside A's own solid
 /// (units whose centroid falls in a hollow, between their legs, can interlock around a neighbour
