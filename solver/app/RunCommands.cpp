@@ -11,6 +11,7 @@
 #include "io/SceneReader.hpp"
 #include "storm/StormFile.hpp"
 #include "simulation/CheckpointFile.hpp"
+#include "simulation/Interpenetration.hpp"
 #include "simulation/RunOutputs.hpp"
 #include "simulation/SceneBuilder.hpp"
 
@@ -147,10 +148,17 @@ void checkScene(const std::string& path, const std::vector<std::string>& sets) {
   // Hydrodynamic loads: the storm file is opened and validated, and must cover the run.
   if (const std::string hydro = hydro::attachLoadStages(*built.world, scene.hydro, scene.duration); !hydro.empty()) {
     std::cout << hydro << "\n";
+    // The records the run will read, each checked as the run would (not the whole file: a storm
+    // of an hour need not be read to check a run of a minute of it).
+    std::cout << hydro::validateStormRecords(scene.hydro, scene.duration) << "\n";
   }
+  simulation::World& world = *built.world;
+  // Bodies inside each other, which the contact cannot separate and the guard rails do not see.
+  const simulation::InterpenetrationReport overlaps = simulation::measureInterpenetration(world, built.planes);
+  std::cout << simulation::describeInterpenetration(overlaps) << "\n";
+  simulation::refuseInterpenetration(overlaps, path);
   // The forces of the initial state: overlaps the guard rails would stop the run for are found
   // now, not after the build of a long run.
-  simulation::World& world = *built.world;
   try {
     world.evaluateContacts();
   } catch (const simulation::SimulationError& e) {
@@ -350,6 +358,19 @@ void runScene(const RunRequest& o) {
     log->info("started from the placed state {} ({} as the placement left them)", scene.initialState.string(),
               contacts ? "positions, contacts and their friction springs" : "positions and velocities");
   }
+  if (!restart) {
+    // A fresh run starts from the scene's positions (or the placed state): bodies inside each
+    // other would run silently to the end (simulation/Interpenetration.hpp). A restart continues
+    // a state that was checked when its run started.
+    const simulation::InterpenetrationReport overlaps = simulation::measureInterpenetration(world, built.planes);
+    log->info("{}", simulation::describeInterpenetration(overlaps));
+    try {
+      simulation::refuseInterpenetration(overlaps, scene.sourceName);
+    } catch (const core::InputError& e) {
+      log->error("{}", e.what()); // the run log says why the run did not start
+      throw;
+    }
+  }
   if (restart) {
     try {
       world.restoreState(restart->state);
@@ -386,6 +407,7 @@ void runScene(const RunRequest& o) {
   log->info("checkpoints to {}: {}at the end and when stopped by SIGINT or SIGTERM", checkpointPath.string(), when);
 
   const double dt = world.timeStep();
+  log->info("{}", simulation::describeOutputTiming(scene.output, dt));
   const double end = scene.duration;
   const std::uint64_t firstStep = world.stepCount();
   double maxOverlap = 0.0;

@@ -11,11 +11,35 @@
 #include "app/StormCommands.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
+#include "io/Scene.hpp" // armour::io::Vec3, which the schema header expects
+#include "io/YamlSchema.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <iostream>
+#include <limits>
+
+namespace {
+
+/// CLI11 reads a number beyond the range of a double (`--duration 1e999`) as infinity, which the
+/// commands then refuse as "inf"; say instead that the number as typed is out of range, as the
+/// scene reader does for the same number in a file or a --set (io::schema::overflowsDouble).
+void refuseOutOfRangeNumbers(CLI::App& app) {
+  const CLI::Validator inRange(
+      [](std::string& value) -> std::string {
+        if (!armour::io::schema::overflowsDouble(value)) return {};
+        return fmt::format("{} is out of range: beyond {:.6g}, the largest number a double holds; give an ordinary "
+                           "number",
+                           value, std::numeric_limits<double>::max());
+      },
+      "", "in the range of a double");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_name() == "FLOAT") option->check(inRange);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuseOutOfRangeNumbers(*sub);
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"armour: breakwater armour-layer stability toolchain (wave tank -> storm file -> rigid FDEM)"};
@@ -35,6 +59,8 @@ int main(int argc, char** argv) {
   armour::app::addAnalyseCommands(app, global);
   armour::app::addEnsembleCommands(app, global);
   armour::app::addReportCommands(app, global);
+
+  refuseOutOfRangeNumbers(app);
 
   std::string commandLine;
   for (int i = 0; i < argc; ++i) {

@@ -43,6 +43,10 @@ std::shared_ptr<spdlog::logger> logger(const std::string& module) {
   auto created = std::make_shared<spdlog::logger>(module, r.sinks.begin(), r.sinks.end());
   created->set_level(r.loggerLevel());
   created->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%n] [%l] %v");
+  // Every line reaches the file at once: a run killed by SIGKILL (or the OOM killer) keeps its log
+  // to the last progress line, which the file's 8 KiB buffer would lose. Lines are few (progress
+  // every few seconds), so the flushes cost nothing measurable.
+  created->flush_on(spdlog::level::trace);
   spdlog::register_logger(created);
   return created;
 }

@@ -19,4 +19,12 @@ namespace armour::hydro {
 /// log ("" when there is none).
 std::string attachLoadStages(simulation::World& world, const HydroSettings& settings, double duration);
 
+/// For `armour check`: read every storm record a run of `duration` seconds from the settings'
+/// time offset reads, with the checks of storm::StormReader::read (a NaN or infinity in a voxel
+/// with data throws core::InputError naming the file, the variable, the time and the voxel), so
+/// that a damaged file is refused before the run, not in the middle of it. Call after
+/// attachLoadStages (which checks that the file covers the run). Returns a line for the report
+/// ("" without a storm).
+std::string validateStormRecords(const HydroSettings& settings, double duration);
+
 } // namespace armour::hydro

@@ -17,7 +17,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -150,6 +152,16 @@ inline std::string fixText(const Num& n) {
 }
 
 using KeyList = std::vector<std::string_view>;
+
+/// True for a decimal number beyond the range of a double, such as 1e999: strtod reads all of it
+/// and overflows (yaml-cpp then reports only that the scalar is not a double). A number too small
+/// for a double (1e-999) reads as 0, as it does in every other tool.
+inline bool overflowsDouble(const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && errno == ERANGE && std::isinf(v);
+}
 
 class Block {
 public:
@@ -320,6 +332,10 @@ private:
       std::string lower = value.Scalar();
       std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
       const bool nonFinite = lower == "nan" || lower == "inf" || lower == "-inf" || lower == "+inf" || lower == "infinity";
+      if (overflowsDouble(value.Scalar()))
+        bad(fmt::format("out of range: beyond {:.6g}, the largest number a double holds; give a value of this "
+                        "key's size {}",
+                        std::numeric_limits<double>::max(), fixText(n)));
       bad(fmt::format("{} {}", nonFinite ? "must be a finite number" : "expected a number", fixText(n)));
     }
     if (!std::isfinite(v)) bad(fmt::format("must be a finite number {}", fixText(n)));

@@ -6,6 +6,7 @@
 #include "core/Log.hpp"
 #include "placement/Deposit.hpp"
 #include "placement/PlacementGrid.hpp"
+#include "simulation/Interpenetration.hpp"
 
 #include <fmt/format.h>
 
@@ -323,6 +324,13 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   result.built = simulation::buildWorld(scene);
   scene.placement = PlacementSettings{}; // the placed scene has no placement block
   World& world = *result.built.world;
+  if (resume == nullptr) {
+    // The bodies the scene gives (fixed or not) must not start inside each other or the statics:
+    // the units would be lowered onto them and the settle could not separate them.
+    const auto overlaps = simulation::measureInterpenetration(world, result.built.planes);
+    log->info("{}", simulation::describeInterpenetration(overlaps));
+    simulation::refuseInterpenetration(overlaps, scene.sourceName);
+  }
   const std::size_t givenBodies = scene.bodies.size();
   result.firstAddedBody = givenBodies;
 

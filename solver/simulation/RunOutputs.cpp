@@ -3,6 +3,8 @@
 
 #include "core/BuildInfo.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -24,6 +26,25 @@ std::size_t seriesSyncEvery(const io::OutputSettings& output) {
   }
   const double perInterval = std::floor(output.checkpointInterval / output.seriesInterval * (1.0 + 1e-9));
   return static_cast<std::size_t>(std::clamp(perInterval, 1.0, static_cast<double>(kMaxSyncEvery)));
+}
+
+std::string stepsPerInterval(double interval, double timeStep) {
+  const double steps = interval / timeStep;
+  if (std::abs(steps - std::round(steps)) <= 1e-6) return fmt::format("exactly {:.0f} steps", steps);
+  return fmt::format("{:.6g} steps", steps);
+}
+
+std::string describeOutputTiming(const io::OutputSettings& output, double timeStep) {
+  std::string intervals;
+  if (output.seriesInterval > 0.0)
+    intervals += fmt::format("series every {} s ({})", output.seriesInterval, stepsPerInterval(output.seriesInterval, timeStep));
+  if (output.vtkInterval > 0.0)
+    intervals += fmt::format("{}VTK every {} s ({})", intervals.empty() ? "" : ", ", output.vtkInterval,
+                             stepsPerInterval(output.vtkInterval, timeStep));
+  if (intervals.empty()) intervals = "no series or VTK output";
+  return fmt::format("time step {:.6g} s; {}: each output is written at the first step at or after its time (at most "
+                     "one step late, stamped with the step's own time)",
+                     timeStep, intervals);
 }
 
 RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const RunProvenance& provenance,

@@ -36,6 +36,15 @@ namespace armour::simulation {
 /// interval (checkpoint_interval / series_interval records, at least 1).
 std::size_t seriesSyncEvery(const io::OutputSettings& output);
 
+/// "107.5 steps" for an interval of 107.5 time steps, "exactly 100 steps" when the step divides it
+/// (to 1e-6 of a step): how an interval relates to the time step, for the run log.
+std::string stepsPerInterval(double interval, double timeStep);
+
+/// One line for the run log: the time step and how many steps make a series and a VTK interval.
+/// The automatic step rarely divides them: each output is written at the first step at or after
+/// its time (at most one step late; the time written is the step's own).
+std::string describeOutputTiming(const io::OutputSettings& output, double timeStep);
+
 /// What a run was made from, recorded in bodies.nc so that `armour report` finds the scene as
 /// the run read it (docs/output-files.md, global attributes).
 struct RunProvenance {

@@ -164,6 +164,14 @@ public:
   void read(std::size_t k, StormRecord& record) const;
   /// Read every record once (for `armour storm-file check`): throws on the first bad value.
   void validateAllRecords() const;
+  /// The interval holding storm time t: the index k of the record at or before t, at most the
+  /// last but one, so that records k and k + 1 are the pair a linear interpolation at t reads.
+  /// @pre times().front() <= t <= times().back() (values outside are clamped to the first or last interval)
+  std::size_t intervalOf(double t) const;
+  /// Read every record an interpolation at storm times in [from, to] reads (for `armour check`:
+  /// the records a run will use): throws on the first bad value, like read(). Returns how many
+  /// records were read.
+  std::size_t validateRecords(double from, double to) const;
 
 private:
   struct Impl;

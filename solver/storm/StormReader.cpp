@@ -508,4 +508,21 @@ void StormReader::validateAllRecords() const {
   }
 }
 
+std::size_t StormReader::intervalOf(double t) const {
+  const std::vector<double>& times = impl_->times;
+  const auto it = std::upper_bound(times.begin(), times.end(), t);
+  const std::size_t after = static_cast<std::size_t>(it - times.begin()); // first record after t
+  return std::min(after == 0 ? 0 : after - 1, times.size() - 2);
+}
+
+std::size_t StormReader::validateRecords(double from, double to) const {
+  const std::size_t first = intervalOf(from);
+  const std::size_t last = intervalOf(to) + 1;
+  StormRecord record;
+  for (std::size_t k = first; k <= last; ++k) {
+    read(k, record);
+  }
+  return last - first + 1;
+}
+
 } // namespace armour::storm

@@ -110,8 +110,7 @@ void StormSampler::setTime(double t) {
                                     "file (or a longer storm file)", t, times.front(), times.back());
   }
   // The record at or before t, limited so that lower + 1 exists (t = last time: weight 1).
-  const auto it = std::upper_bound(times.begin(), times.end(), t);
-  const std::size_t lower = std::min(static_cast<std::size_t>(it - times.begin()) - 1, times.size() - 2);
+  const std::size_t lower = reader_.intervalOf(t);
   const std::size_t upper = lower + 1;
   if (heldA_ != lower || heldB_ != upper) {
     if (heldB_ == lower || heldA_ == upper) {

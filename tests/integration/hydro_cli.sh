@@ -30,6 +30,8 @@ run() { "$armour" --log-level warn run "$out/scene.yaml" --threads 1 "$@"; }
 checked=$("$armour" --log-level warn check "$out/scene.yaml")
 grep -q "hydro: storm .*storm.nc (361 records" <<< "$checked" || fail "check does not report the storm file: $checked"
 grep -q "4 loaded bodies" <<< "$checked" || fail "check should count 4 loaded units: $checked"
+grep -Eq "update every 0.1 s \((exactly )?[0-9.]+ steps; records every 0.05 s on average, (exactly )?[0-9.]+ steps\): loads are evaluated at the exact update times" <<< "$checked" \
+  || fail "check does not relate the time step to the storm's intervals: $checked"
 
 # The run, and the hydrodynamic forces it recorded.
 run -o "$out/full"
@@ -91,6 +93,52 @@ msg=$("$armour" --log-level warn check "$out/missing.yaml" 2>&1); status=$?
 set -e
 [[ $status -eq 2 ]] || fail "a missing storm file should exit 2, got $status: $msg"
 grep -q "missing.nc" <<< "$msg" || fail "the message should name the missing file: $msg"
+# Records with a NaN (issue 23, item 11): `check` reads the records the run will read (storm times
+# 12 .. 16 s plus one update interval) with the checks of `storm-file check`. A NaN in p at
+# t = 15 s is refused, naming the file, the variable and the time; one at t = 17.5 s, which this
+# run never reads, is not (`storm-file check` refuses both).
+damage() { # source, target, record
+  /usr/bin/python3 - "$1" "$2" "$3" <<'PY'
+import shutil, sys, netCDF4, numpy
+shutil.copy(sys.argv[1], sys.argv[2])
+with netCDF4.Dataset(sys.argv[2], "a") as ds:
+    iz, ix = [int(i[0]) for i in numpy.nonzero(numpy.asarray(ds["samples"][:]) > 0)]
+    ds["p"][int(sys.argv[3]), iz, ix] = numpy.nan
+PY
+}
+damage "$out/storm.nc" "$out/nan.nc" 300
+damage "$out/storm.nc" "$out/nan-late.nc" 350
+for f in nan nan-late; do sed "s/file: storm.nc/file: $f.nc/" "$out/scene.yaml" > "$out/$f.yaml"; done
+set +e; msg=$("$armour" --log-level warn check "$out/nan.yaml" 2>&1); status=$?; set -e
+[[ $status -eq 2 ]] || fail "check of a storm with a NaN in a record the run reads: expected exit 2, got $status: $msg"
+grep -q "nan.nc: p = nan at t = 15 s (record 300)" <<< "$msg" || fail "the NaN is not located: $msg"
+msg=$("$armour" --log-level warn check "$out/nan-late.yaml" 2>&1) || fail "check refused a NaN the run never reads: $msg"
+grep -Eq "storm records: the [0-9]* records the run reads \\(storm times 12 \\.\\. 16\\.(1|0999)[0-9]* s\\) hold finite values" <<< "$msg" \
+  || fail "check does not report the records it read: $msg"
+set +e; msg=$("$armour" --log-level warn storm-file check "$out/nan-late.nc" 2>&1); status=$?; set -e
+[[ $status -eq 2 ]] || fail "storm-file check should refuse the NaN at 17.5 s, got $status: $msg"
+# The advice for a storm too short (issue 23, item 8): a file from 0.05 s and an offset of 0 s is
+# an offset before the first record, not a duration too long (0.95 s is shorter than the file).
+/usr/bin/python3 - "$out/storm.nc" "$out/late-start.nc" <<'PY'
+import shutil, sys, netCDF4
+shutil.copy(sys.argv[1], sys.argv[2])
+with netCDF4.Dataset(sys.argv[2], "a") as ds:
+    ds["time"][:] = ds["time"][:] + 0.05
+PY
+sed 's/file: storm.nc/file: late-start.nc/' "$out/scene.yaml" > "$out/late-start.yaml"
+set +e
+msg=$("$armour" --log-level warn check "$out/late-start.yaml" --set hydro.storm.time_offset=0 --set duration=0.95 2>&1); status=$?
+set -e
+[[ $status -eq 2 ]] || fail "an offset before the first record should exit 2, got $status: $msg"
+grep -q "late-start.nc: holds storm times 0.05[0-9]* .. 18.0[45][0-9]* s, but the run needs 0 .. 0.95 s" <<< "$msg" || fail "unclear message: $msg"
+grep -q "set the offset to at least 0.05 s (at most 17.1 s for this duration)" <<< "$msg" || fail "wrong advice: $msg"
+! grep -q "shorten the duration" <<< "$msg" || fail "advises a shorter duration for a duration that fits: $msg"
+set +e; msg=$("$armour" --log-level warn check "$out/late-start.yaml" --set duration=20 2>&1); set -e
+grep -q "the file spans 18 s, less than the duration: shorten the duration to at most 18 s" <<< "$msg" \
+  || fail "a duration longer than the file: wrong advice: $msg"
+grep -q "shorten the duration to at most 2 s, set the offset to at most 10 s" <<< \
+  "$("$armour" --log-level warn check "$out/short.yaml" 2>&1 || true)" || fail "a window past the end: wrong advice"
+
 # Another storm in the same place: a restart must not mix two storms.
 synth "$out/storm.nc" 19
 set +e

@@ -118,6 +118,36 @@ kept=$(grep -o "bodies.pvd: resuming at .*: keeping [0-9]* of [0-9]* frames" "$o
 same_as_reference "$out/kill" "run killed by SIGKILL"
 ! ls "$out/kill" | grep -q '\.tmp\.' || fail "temporary files left: $(ls "$out/kill")"
 
+# The log of a killed run keeps every line logged before the kill (issue 23, item 12): run.log is
+# flushed line by line, not in 8 KiB blocks. A long run is killed as soon as its first progress
+# line (every 5 s of wall time) is in run.log, then restarted and killed as soon as the
+# "restarted from" line is there; with a block-buffered log neither line reaches the file and the
+# waits run out (20 s each).
+wait_for_line() { # file, pattern
+  for _ in $(seq 400); do
+    grep -qs "$2" "$1" && return 0
+    sleep 0.05
+  done
+  return 1
+}
+"$armour" --log-level warn run "$scene" --threads 1 --duration 600 -o "$out/killlog" 2> /dev/null &
+pid=$!
+wait_for_line "$out/killlog/run.log" "steps/s, ETA" || true
+kill -KILL $pid
+set +e; wait $pid 2> /dev/null; code=$?; set -e
+[ $code -eq 137 ] || fail "log of a killed run: expected exit 137, got $code"
+grep -q "steps/s, ETA" "$out/killlog/run.log" || fail "a run killed by SIGKILL lost its progress lines: $(tail -n 3 "$out/killlog/run.log")"
+grep -q "checkpoints to .*checkpoint.nc" "$out/killlog/run.log" || fail "a run killed by SIGKILL lost its start-up lines"
+"$armour" --log-level warn run "$scene" --threads 1 --duration 600 -o "$out/killlog" --restart 2> /dev/null &
+pid=$!
+wait_for_line "$out/killlog/run.log" "restarted from t = " || true
+kill -KILL $pid
+set +e; wait $pid 2> /dev/null; code=$?; set -e
+[ $code -eq 137 ] || fail "log of a killed restart: expected exit 137, got $code"
+grep -q "restarted from t = [0-9.e-]* s (step [0-9]*)" "$out/killlog/run.log" \
+  || fail "a restarted run killed by SIGKILL lost its 'restarted from' line: $(tail -n 3 "$out/killlog/run.log")"
+grep -q "steps/s, ETA" "$out/killlog/run.1.log" || fail "the killed first part's log was not kept as run.1.log"
+
 # Refused: a changed material (the change named, exit 2, the run left as it was).
 sed 's/friction: 0.5,/friction: 0.6,/' "$scene" > "$out/changed.yaml"
 cp -r "$out/full" "$out/changed"

@@ -622,6 +622,14 @@ TEST(SceneErrors, OutOfRangeValues) {
   EXPECT_CONTAINS(errorFrom("time_step: -1e-3\n" + oneBody()), "time_step = -1e-3: must be > 0 (unit: s)");
   EXPECT_CONTAINS(errorFrom("time_step: automatic\n" + oneBody()), "time_step = automatic: expected a number (unit: s)");
   EXPECT_CONTAINS(errorFrom(oneBody(", velocity: [0, .inf, 0]")), "bodies[0].velocity[1] = .inf: must be a finite number");
+  // A number beyond the range of a double is out of range, not "expected a number" (issue 23,
+  // item 13); one too small for a double reads as 0, as everywhere else.
+  EXPECT_CONTAINS(errorFrom(material("density: 1e999, friction: 0.7, restitution: 0.1")),
+                  "materials.concrete.density = 1e999: out of range: beyond 1.79769e+308, the largest number a double "
+                  "holds; give a value of this key's size (unit: kg/m^3), e.g. 2400 for concrete, 2650 for rock");
+  EXPECT_CONTAINS(errorFrom(oneBody(", velocity: [0, -2e400, 0]")), "bodies[0].velocity[1] = -2e400: out of range");
+  EXPECT_CONTAINS(errorFrom(material("density: 1e-999, friction: 0.7, restitution: 0.1")),
+                  "materials.concrete.density = 1e-999: must be > 0");
   EXPECT_CONTAINS(errorFrom(sceneWith("bodies:\n  - {shape: {generator: dolos, params: {waist: 0.5}}, dn: 1, "
                                       "material: concrete, position: [0, 0, 2]}\n")),
                   "bodies[0].shape.params.waist = 0.5: must be in [0.32, 0.42] (unit: -)");
