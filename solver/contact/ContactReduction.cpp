@@ -13,12 +13,12 @@ namespace {
 /// `bonus` turns a raw score of a point kept in the previous step into its preferred score.
 template <typename Score, typename Bonus>
 int best(const std::vector<ContactPoint>& points, const std::vector<int>& members, double floor, Score&& score,
-         const std::vector<std::uint32_t>& kept, Bonus&& bonus) {
+         const std::vector<char>& kept, Bonus&& bonus) {
   int chosen = -1;
   double top = floor;
   for (int m : members) {
     double s = score(points[m]);
-    if (s > floor && std::binary_search(kept.begin(), kept.end(), points[m].key)) s = bonus(s);
+    if (s > floor && kept[static_cast<std::size_t>(m)] != 0) s = bonus(s);
     if (s > top || (s == top && chosen >= 0 && points[m].key < points[chosen].key)) {
       top = s;
       chosen = m;
@@ -29,7 +29,7 @@ int best(const std::vector<ContactPoint>& points, const std::vector<int>& member
 
 /// Up to four points spanning one patch.
 ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, const std::vector<int>& members,
-                               const ReductionSettings& settings, const std::vector<std::uint32_t>& kept) {
+                               const ReductionSettings& settings, const std::vector<char>& kept) {
   ContactPatchPoints patch;
   Vec3 normal = Vec3::Zero();
   for (int m : members) {
@@ -65,15 +65,28 @@ ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, const st
       }
     }
   }
-  for (int m : members) {
-    if (points[m].depth > 0.0) patch.area += points[m].area;
-  }
   patch.count = count;
   for (int k = 0; k < count; ++k) {
     const ContactPoint& p = points[chosen[k]];
     patch.keys[k] = p.key;
     patch.points[k] = p.point;
-    patch.depths[k] = depth(p);
+    patch.depths[k] = p.depth;
+    patch.normals[k] = p.normal;
+    patch.areas[k] = p.area;
+  }
+  // Every other penetrating sample lends its area to the nearest kept point.
+  for (int m : members) {
+    if (!(points[m].depth > 0.0) || m == chosen[0] || m == chosen[1] || m == chosen[2] || m == chosen[3]) continue;
+    int nearest = 0;
+    double closest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < count; ++k) {
+      const double d = flat(points[m].point - patch.points[k]).squaredNorm();
+      if (d < closest) {
+        closest = d;
+        nearest = k;
+      }
+    }
+    patch.areas[nearest] += points[m].area;
   }
   return patch;
 }
@@ -85,43 +98,53 @@ void reduceContacts(const std::vector<ContactPoint>& points, const ReductionSett
   if (points.empty()) {
     return;
   }
-  // Deepest first (ties: lower key), each unassigned point seeding a patch.
-  std::vector<int> order(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int x, int y) {
-    return points[x].depth != points[y].depth ? points[x].depth > points[y].depth : points[x].key < points[y].key;
-  });
+  const std::size_t n = points.size();
+  std::vector<char> wasKept(n, 0);
+  if (!kept.empty()) {
+    for (std::size_t i = 0; i < n; ++i) wasKept[i] = std::binary_search(kept.begin(), kept.end(), points[i].key) ? 1 : 0;
+  }
+  // Seeds: the deepest unassigned point (ties: lower key); it takes every unassigned point within
+  // the patch angle of its normal. Then the next seed, up to maxPatches; points left over join the
+  // patch of the nearest seed normal. (The same patches as visiting the points deepest first, each
+  // joining the first seed within the angle, without sorting them.)
   const double cosAngle = std::cos(settings.patchAngle);
+  std::vector<int> patchOf(n, -1);
   std::vector<Vec3> seeds;
-  std::vector<std::vector<int>> members;
-  for (int i : order) {
-    const Vec3& n = points[i].normal;
-    int joined = -1;
-    double closest = -2.0;
-    int nearest = -1;
-    for (std::size_t s = 0; s < seeds.size(); ++s) {
-      const double c = seeds[s].dot(n);
-      if (c >= cosAngle) {
-        joined = static_cast<int>(s);
-        break;
-      }
-      if (c > closest) {
-        closest = c;
-        nearest = static_cast<int>(s);
+  std::size_t assigned = 0;
+  while (assigned < n && static_cast<int>(seeds.size()) < settings.maxPatches) {
+    int seed = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (patchOf[i] >= 0) continue;
+      if (seed < 0 || points[i].depth > points[seed].depth ||
+          (points[i].depth == points[seed].depth && points[i].key < points[seed].key)) {
+        seed = static_cast<int>(i);
       }
     }
-    if (joined < 0 && static_cast<int>(seeds.size()) < settings.maxPatches) {
-      seeds.push_back(n);
-      members.emplace_back();
-      joined = static_cast<int>(seeds.size()) - 1;
+    const Vec3 normal = points[seed].normal;
+    const int patch = static_cast<int>(seeds.size());
+    seeds.push_back(normal);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (patchOf[i] < 0 && normal.dot(points[i].normal) >= cosAngle) {
+        patchOf[i] = patch;
+        ++assigned;
+      }
     }
-    if (joined < 0) {
-      joined = nearest;
+  }
+  std::vector<std::vector<int>> members(seeds.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (patchOf[i] < 0) {
+      double closest = -2.0;
+      for (std::size_t s = 0; s < seeds.size(); ++s) {
+        if (const double c = seeds[s].dot(points[i].normal); c > closest) {
+          closest = c;
+          patchOf[i] = static_cast<int>(s);
+        }
+      }
     }
-    members[joined].push_back(i);
+    members[static_cast<std::size_t>(patchOf[i])].push_back(static_cast<int>(i));
   }
   for (const auto& m : members) {
-    out.push_back(reducePatch(points, m, settings, kept));
+    out.push_back(reducePatch(points, m, settings, wasKept));
   }
 }
 

@@ -15,7 +15,8 @@
 ///  3. the point that makes the largest triangle with 1 and 2;
 ///  4. the point on the other side of the line 1-2 that makes the largest triangle with 1 and 2.
 /// The patch normal is the area-weighted mean normal of its points; each kept point keeps its own
-/// position, key and depth measured along that normal. Ties go to the lower key, so the reduction
+/// position, key and depth measured along that normal, and the tributary area of the penetrating
+/// samples nearest to it in the tangent plane (with its own as the least). Ties go to the lower key, so the reduction
 /// depends only on the points and the previous step's keys, never on the thread count. Points kept
 /// in the previous step are preferred within a tolerance (ReductionSettings::keepDepth, keepFactor),
 /// so that the warm start finds them again.
@@ -44,8 +45,12 @@ struct ContactPatchPoints {
   int count = 0;                     ///< points used (unit: -)
   std::uint32_t keys[4] = {0, 0, 0, 0};
   Vec3 points[4];                    ///< world (unit: m)
+  Vec3 normals[4];                   ///< each kept sample's own normal (unit: -)
   double depths[4] = {0, 0, 0, 0};   ///< along `normal`, > 0 penetrating (unit: m)
-  double area = 0.0;                 ///< tributary area of the patch's penetrating points (unit: m^2)
+  /// Tributary area each kept point stands for (unit: m^2): its own, plus that of every
+  /// penetrating sample of the patch nearer to it than to the other kept points, so that the
+  /// points' springs E_p a_k / L add up to the penalty law's over the patch.
+  double areas[4] = {0, 0, 0, 0};
 };
 
 /// Reduce a pair's points (NarrowPhase output) to patches, appended to `out`. `kept`: the keys the

@@ -62,12 +62,14 @@ void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodi
   const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
   for (int k = 0; k < c.count; ++k) {
     ConstraintPoint& p = c.points[k];
-    p.normalMass = effectiveMass(a, b, p.rA, p.rB, c.normal);
-    p.softness = makeSoftness(c.stiffness, c.dampingRatio, p.normalMass, h);
-    p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, c.tangent1);
-    p.tangentMass[1] = effectiveMass(a, b, p.rA, p.rB, c.tangent2);
+    p.normalMass = effectiveMass(a, b, p.rA, p.rB, p.normal);
+    p.softness = makeSoftness(p.stiffness, c.dampingRatio, p.normalMass, h);
+    const double tangentMass = std::min(p.tangentMass[0], p.tangentMass[1]);
+    p.tangentSoftness = makeSoftness(p.tangentStiffness, c.dampingRatio, tangentMass, h);
+    p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, p.tangent1);
+    p.tangentMass[1] = effectiveMass(a, b, p.rA, p.rB, p.tangent2);
     p.maxNormalImpulse = 0.0;
-    p.approachSpeed = c.normal.dot(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
+    p.approachSpeed = p.normal.dot(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
   }
 }
 
@@ -76,7 +78,7 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
     Pair pair(c, bodies);
     for (int k = 0; k < c.count; ++k) {
       const ConstraintPoint& p = c.points[k];
-      const Vec3 P = p.normalImpulse * c.normal + p.tangentImpulse[0] * c.tangent1 + p.tangentImpulse[1] * c.tangent2;
+      const Vec3 P = p.normalImpulse * p.normal + p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
       pair.apply(P, p.rA, p.rB);
     }
   }
@@ -91,7 +93,7 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
     for (int k = 0; k < c.count; ++k) {
       ConstraintPoint& p = c.points[k];
       const Vec3 ds = dp + pair.a->dq * p.rA - pair.b->dq * p.rB;
-      const double s = p.baseSeparation + c.normal.dot(ds);
+      const double s = p.baseSeparation + p.normal.dot(ds);
       double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
       if (s > 0.0) {
         bias = s * invH; // speculative: may close the gap in this substep, no more
@@ -100,20 +102,30 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
         massScale = p.softness.massScale;
         impulseScale = p.softness.impulseScale;
       }
-      const double vn = c.normal.dot(pair.relativeVelocity(p.rA, p.rB));
+      const double vn = p.normal.dot(pair.relativeVelocity(p.rA, p.rB));
       const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
       const double updated = std::max(p.normalImpulse + impulse, 0.0);
       const double applied = updated - p.normalImpulse;
       p.normalImpulse = updated;
       p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-      pair.apply(applied * c.normal, p.rA, p.rB);
+      pair.apply(applied * p.normal, p.rA, p.rB);
     }
     for (int k = 0; k < c.count; ++k) {
       ConstraintPoint& p = c.points[k];
       const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
       const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
-      double t0 = old0 - p.tangentMass[0] * c.tangent1.dot(vr);
-      double t1 = old1 - p.tangentMass[1] * c.tangent2.dot(vr);
+      double bias0 = 0.0, bias1 = 0.0, massScale = 1.0, impulseScale = 0.0;
+      if (useBias && !p.sliding && p.tangentStiffness > 0.0) {
+        // The friction spring pulls the point back to where it stuck.
+        const Vec3 moved = dp + pair.a->dq * p.rA - pair.b->dq * p.rB - (p.rA - p.rB);
+        const Vec3 stretch = p.stretch + moved - p.normal.dot(moved) * p.normal;
+        bias0 = p.tangentSoftness.biasRate * p.tangent1.dot(stretch);
+        bias1 = p.tangentSoftness.biasRate * p.tangent2.dot(stretch);
+        massScale = p.tangentSoftness.massScale;
+        impulseScale = p.tangentSoftness.impulseScale;
+      }
+      double t0 = old0 - p.tangentMass[0] * massScale * (p.tangent1.dot(vr) + bias0) - impulseScale * old0;
+      double t1 = old1 - p.tangentMass[1] * massScale * (p.tangent2.dot(vr) + bias1) - impulseScale * old1;
       const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
       const double length = std::sqrt(t0 * t0 + t1 * t1);
       p.slides = length > limit;
@@ -124,9 +136,21 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
       }
       p.tangentImpulse[0] = t0;
       p.tangentImpulse[1] = t1;
-      pair.apply((t0 - old0) * c.tangent1 + (t1 - old1) * c.tangent2, p.rA, p.rB);
+      pair.apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p.rA, p.rB);
     }
   }
+}
+
+Vec3 endStretch(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies, double h) {
+  if (p.slides || !(p.tangentStiffness > 0.0)) {
+    // Sliding: the spring holds the Coulomb force, so that sticking again starts from it.
+    const Vec3 tau = p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
+    return p.tangentStiffness > 0.0 ? Vec3(-tau / (h * p.tangentStiffness)) : Vec3::Zero();
+  }
+  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+  const Vec3 moved = a.dp - b.dp + a.dq * p.rA - b.dq * p.rB - (p.rA - p.rB);
+  return p.stretch + moved - p.normal.dot(moved) * p.normal;
 }
 
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
@@ -145,13 +169,13 @@ void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<S
         if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0.0) {
           continue;
         }
-        const double vn = c.normal.dot(pair.relativeVelocity(p.rA, p.rB));
+        const double vn = p.normal.dot(pair.relativeVelocity(p.rA, p.rB));
         const double impulse = -p.normalMass * (vn + c.restitution * p.approachSpeed);
         const double updated = std::max(p.normalImpulse + impulse, 0.0);
         const double applied = updated - p.normalImpulse;
         p.normalImpulse = updated;
         p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-        pair.apply(applied * c.normal, p.rA, p.rB);
+        pair.apply(applied * p.normal, p.rA, p.rB);
       }
     }
   }

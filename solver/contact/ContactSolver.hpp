@@ -25,12 +25,17 @@
 ///   s <= 0, bias off:           lambda += -m_n v_n
 /// with the soft constraint of a physical spring k and dashpot c at each point (Catto 2011, "Soft
 /// constraints"): gamma = 1 / (h (c + h k)), b = k / (c + h k), S_m = 1 / (1 + gamma m_n),
-/// S_i = gamma m_n / (1 + gamma m_n). k is the penalty law's stiffness of the patch, E_p A / L (A the
-/// tributary area of its penetrating samples), shared by its points; c = 2 zeta sqrt(k m_n). A point
+/// S_i = gamma m_n / (1 + gamma m_n). k is the penalty law's stiffness E_p a / L of the tributary area
+/// a the point stands for (ContactReduction), c = 2 zeta sqrt(k m_n). A point
 /// whose k m_n^-1 exceeds (pi / (2 h))^2 gets that bound instead (Box2D's cap at a quarter of the
 /// substep rate): stiffer than the substep can resolve, it behaves as rigid with Baumgarte-free push.
 /// Friction: Coulomb, the tangential impulse (t1, t2) clamped to the disk mu lambda, mu = mu_d at a
-/// point that slid in the previous step, mu_s at one that stuck.
+/// point that slid in the previous step, mu_s at one that stuck. While it sticks, a point is held
+/// by a soft friction spring k_t = r_t k at the place where it stuck (the penalty law's spring and
+/// stretch s; bias on): the tangential rows aim at v_t = -b_t s(t), with
+/// s(t) = s0 + T (dp_A + dq_A r_A - dp_B - dq_B r_B - (r_A - r_B)), T the tangential projector, so
+/// that velocity errors never add up to a creep; sliding, the stretch is the Coulomb force's,
+/// -tau / (h k_t), as in the penalty law.
 ///
 /// Determinism: serial Gauss-Seidel in constraint order; any thread count gives the same bits.
 
@@ -71,6 +76,8 @@ struct SolverBody {
 /// One point of a contact constraint.
 struct ConstraintPoint {
   std::uint32_t key = 0;          ///< narrow-phase sample key (warm start)
+  Vec3 normal = Vec3::UnitZ();    ///< unit, from B into A: the sample's own (its level-set gradient)
+  Vec3 tangent1 = Vec3::UnitX(), tangent2 = Vec3::UnitY();
   Vec3 rA = Vec3::Zero();         ///< anchor from A's centre at the step start (unit: m)
   Vec3 rB = Vec3::Zero();         ///< anchor from B's centre (unit: m)
   double baseSeparation = 0.0;    ///< s0 (unit: m)
@@ -80,7 +87,11 @@ struct ConstraintPoint {
   double tangentImpulse[2] = {0, 0}; ///< along t1, t2 (unit: N s)
   double maxNormalImpulse = 0.0;  ///< largest over the step's substeps (unit: N s)
   double approachSpeed = 0.0;     ///< normal relative velocity at prepare, < 0 approaching (unit: m/s)
+  double stiffness = 0.0;         ///< the point's spring E_p a / L, a its tributary area (unit: N/m)
   Softness softness;              ///< of this point's spring (prepareConstraint)
+  double tangentStiffness = 0.0;  ///< the friction spring r_t E_p a / L (unit: N/m)
+  Softness tangentSoftness;       ///< of the friction spring (prepareConstraint)
+  Vec3 stretch = Vec3::Zero();    ///< friction spring's stretch at the step start, tangential, world (unit: m)
   bool sliding = false;           ///< sliding at the end of the last step: mu_d holds it, else mu_s
   bool slides = false;            ///< the friction cap held in the last pass (the next step's `sliding`)
 };
@@ -88,12 +99,10 @@ struct ConstraintPoint {
 /// A reduced contact patch between bodies A (pushed along the normal) and B, as a constraint.
 struct ContactConstraint {
   int bodyA = 0, bodyB = 0;       ///< solver body indices, 0 for the ground
-  Vec3 normal = Vec3::UnitZ();    ///< unit, from B into A
-  Vec3 tangent1 = Vec3::UnitX(), tangent2 = Vec3::UnitY();
+  Vec3 normal = Vec3::UnitZ();    ///< the patch's mean normal (unit, from B into A); each point has its own
   double friction = 0.0;          ///< Coulomb mu_s, while sticking (unit: -)
   double frictionDynamic = 0.0;   ///< Coulomb mu_d, while sliding (unit: -)
   double restitution = 0.0;       ///< e (unit: -)
-  double stiffness = 0.0;         ///< spring of each point, E_p A / (L count) (unit: N/m)
   double dampingRatio = 1.0;      ///< zeta of each point's spring (unit: -)
   int count = 0;
   ConstraintPoint points[4];
@@ -119,6 +128,10 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
 /// One Gauss-Seidel pass over all constraints. useBias: the solve (true) or the relax (false).
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias);
+
+/// The friction springs' stretch at the end of the step, from the bodies' motion (call after the
+/// last substep, with dp and dq current).
+Vec3 endStretch(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies, double h);
 
 /// Restitution after the substeps (see the file comment).
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,

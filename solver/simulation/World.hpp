@@ -212,6 +212,7 @@ public:
 /// Counters of the last step, for logs and benchmarks.
 struct StepStatistics {
   std::size_t candidatePairs = 0;   ///< broad-phase pairs (bodies and planes)
+  std::size_t warmStarted = 0;      ///< constraint solver: reduced points that found their impulses of the last step
   std::size_t contactPoints = 0;    ///< engaged sample points (fdem: element-pair and face records)
   std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
   double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
@@ -384,6 +385,7 @@ private:
   std::vector<std::int32_t> solverIndex_;          ///< body -> solver body (0: ground)
   std::vector<contact::ContactConstraint> constraints_;
   std::vector<std::uint32_t> constraintPair_;      ///< constraint -> manifold index
+  std::size_t warmStarted_ = 0;                    ///< points of this step's constraints that found their impulses
   std::vector<Vec3> stepStartPosition_;            ///< awake bodies' x at the step start (m)
   std::vector<Quat> stepStartOrientation_;
   StepProfile profile_;

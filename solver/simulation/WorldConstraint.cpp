@@ -121,6 +121,7 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
   const ConstraintSettings& cs = settings_.constraint;
   constraints_.clear();
   constraintPair_.clear();
+  std::size_t warmStarted = 0;
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
     PairManifold& m = manifolds[i];
     guardOverlap(m.key, m.maxOverlap, std::numeric_limits<double>::infinity());
@@ -140,32 +141,41 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
     const Material& ma = materials_[bodyMaterial_[a]];
     const Material& mb = materials_[materialB];
     const Vec3& xA = bodies_.position(a);
-    // The penalty law's stiffness (section 6 of docs/theory.md): E_p A / L for the patch.
+    // The penalty law's stiffness (section 6 of docs/theory.md): E_p a / L for the area a each
+    // kept point stands for.
     const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
     const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
+    const double tangentRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
     for (const auto& patch : m.patches) {
       contact::ContactConstraint c;
       c.bodyA = solverIndex_[a];
       c.bodyB = isStatic ? 0 : solverIndex_[m.key.second];
       c.normal = patch.normal;
-      contact::tangentBasis(c.normal, c.tangent1, c.tangent2);
       c.friction = std::min(ma.frictionStatic, mb.frictionStatic);
       c.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
       c.restitution = std::min(ma.restitution, mb.restitution);
       c.count = patch.count;
-      c.stiffness = modulus * patch.area / lengthScale / patch.count;
       c.dampingRatio = cs.dampingRatio;
       for (int k = 0; k < patch.count; ++k) {
         contact::ConstraintPoint& p = c.points[k];
         p.key = patch.keys[k];
+        p.normal = patch.normals[k];
+        contact::tangentBasis(p.normal, p.tangent1, p.tangent2);
         p.rA = patch.points[k] - xA;
         p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
-        p.baseSeparation = -patch.depths[k] - c.normal.dot(p.rA - p.rB);
+        p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
+        p.stiffness = modulus * patch.areas[k] / lengthScale;
+        p.tangentStiffness = tangentRatio * p.stiffness;
         if (const contact::PointHistory* old = findPoint(previous, p.key)) {
           p.normalImpulse = old->normalImpulse;
-          p.tangentImpulse[0] = old->tangentImpulse.dot(c.tangent1);
-          p.tangentImpulse[1] = old->tangentImpulse.dot(c.tangent2);
+          p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
+          p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
           p.sliding = old->sliding;
+          // The friction spring's stretch, carried into the new tangent plane at its length.
+          const Vec3 flat = old->stretch - p.normal.dot(old->stretch) * p.normal;
+          const double length = flat.norm();
+          p.stretch = length > 0.0 ? Vec3(flat * (old->stretch.norm() / length)) : Vec3::Zero();
+          ++warmStarted;
         }
       }
       contact::prepareConstraint(c, solverBodies_, h);
@@ -173,6 +183,7 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
       constraintPair_.push_back(static_cast<std::uint32_t>(i));
     }
   }
+  warmStarted_ = warmStarted;
 }
 
 void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, double h) {
@@ -186,6 +197,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
   for (const auto& m : manifolds) {
     stats_.maxOverlap = std::max(stats_.maxOverlap, m.maxOverlap);
   }
+  stats_.warmStarted = warmStarted_;
   auto forces = bodies_.forces();
   auto torques = bodies_.torques();
   PairHistories next;
@@ -206,11 +218,12 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
         const contact::ConstraintPoint& p = k.points[j];
         contact::PointHistory ph;
         ph.sliding = p.slides;
+        ph.stretch = contact::endStretch(k, p, solverBodies_, h);
         ph.normalImpulse = p.normalImpulse;
-        ph.tangentImpulse = p.tangentImpulse[0] * k.tangent1 + p.tangentImpulse[1] * k.tangent2;
+        ph.tangentImpulse = p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
         history.emplace_back(p.key, ph);
         // Mean force over the last substep on A (B gets minus it).
-        const Vec3 force = (p.normalImpulse * k.normal + ph.tangentImpulse) / h;
+        const Vec3 force = (p.normalImpulse * p.normal + ph.tangentImpulse) / h;
         const Vec3 point = bodies_.position(a) + p.rA;
         forces[a] += force;
         torques[a] += p.rA.cross(force);

@@ -66,4 +66,30 @@ grep -q "hydro: 20 load updates; 80 of 80 unit evaluations skipped (100.0 %" "$o
   --duration 0.5 --set hydro.storm.ramp_time=1 > "$out/dry-ramp.txt" 2>&1 \
   || fail "armour storm --set hydro.storm.ramp_time=1 failed: $(cat "$out/dry-ramp.txt")"
 grep -q "ramp_time = 1 s" "$out/dry-ramp/run.log" || fail "the ramp is not in the run log: $(grep time_offset "$out/dry-ramp/run.log")"
+# The same still water under the constraint solver (issue 22): 60 s from the same placed state; the
+# springs are the penalty law's, so the elastic rebound under buoyancy is of the same size, and the
+# pack must then stand (< 1 mm from 10 s) with the full buoyancy on every unit.
+"$armour" --log-level warn storm "$out/dolos-placed.yaml" --storm "$out/still.nc" --threads 1 -o "$out/run-constraint" \
+  --duration 60 --set contact.solver=constraint > "$out/storm-constraint.txt" 2>&1 \
+  || fail "armour storm with the constraint solver failed: $(cat "$out/storm-constraint.txt")"
+grep -q "time step by stage (constraint solver" "$out/run-constraint/run.log" || fail "run.log has no constraint-solver profile"
+/usr/bin/python3 - "$out/run-constraint/bodies.nc" <<'PY' || fail "constraint solver: the pack moved in still water, or felt no water"
+import sys, netCDF4, numpy
+with netCDF4.Dataset(sys.argv[1]) as ds:
+    t = numpy.asarray(ds["time"][:])
+    names = [n.strip() for n in netCDF4.chartostring(ds["body_name"][:])]
+    x = numpy.asarray(ds["position"][:])
+    f = numpy.asarray(ds["hydro_force"][:])
+assert abs(t[-1] - 60.0) < 0.5, t[-1]
+units = [i for i, n in enumerate(names) if n.startswith("unit_")]
+k10 = int(numpy.searchsorted(t, 10.0))
+rebound = max(numpy.linalg.norm(x[k10, i] - x[0, i]) for i in units)
+moved = max(numpy.linalg.norm(x[-1, i] - x[k10, i]) for i in units)
+print(f"constraint solver: rebound {rebound * 1e3:.3f} mm; largest move from 10 s to 60 s: {moved * 1e3:.4f} mm")
+assert rebound < 1e-2, rebound
+assert moved < 1e-3, moved
+buoyancy = 1025.0 * 9.81 * 7.234
+for i in units:
+    assert abs(f[-1, i, 2] - buoyancy) < 0.01 * buoyancy, (names[i], f[-1, i, 2], buoyancy)
+PY
 echo "storm_still: OK ($asleep % of the body-steps asleep; dry units skipped)"
