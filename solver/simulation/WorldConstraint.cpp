@@ -36,16 +36,6 @@ namespace {
 /// resting overlap at E_p = 1e8 Pa).
 constexpr double kKeepDepthPerDn = 1e-3;
 
-/// The friction history of sample `key` in a pair's history (sorted by key), or null.
-const contact::PointHistory* findPoint(const std::vector<std::pair<std::uint32_t, contact::PointHistory>>* h,
-                                       std::uint32_t key) {
-  if (h == nullptr) {
-    return nullptr;
-  }
-  auto it = std::lower_bound(h->begin(), h->end(), key, [](const auto& e, std::uint32_t k) { return e.first < k; });
-  return it != h->end() && it->first == key ? &it->second : nullptr;
-}
-
 } // namespace
 
 void World::collideConstraint(std::vector<PairManifold>& manifolds) {
@@ -63,15 +53,9 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
     std::vector<contact::ContactPoint> points;
     if ((m.key.second & kStaticBits) != 0) {
       const bool isPlane = (m.key.second & kPlaneBit) != 0;
-      const std::uint32_t index = m.key.second & ~kStaticBits;
-      const StaticPlane* plane = isPlane ? &planes_[index] : nullptr;
-      const double planeOffset = isPlane ? plane->normal.dot(plane->point) : 0.0;
-      contact::HalfSpaces solid;
-      if (isPlane) {
-        solid = {std::span<const Vec3>(&plane->normal, 1), std::span<const double>(&planeOffset, 1), boxes_[a]};
-      } else {
-        solid = {convex_[index].normals, convex_[index].offsets, convex_[index].box};
-      }
+      const detail::StaticTarget target =
+          detail::staticTarget(planes_, convex_, isPlane, m.key.second & ~kStaticBits, boxes_[a]);
+      const contact::HalfSpaces solid{target.normals, target.offsets(), target.region};
       const double margin = cs.speculativeMargin * bodyDn(a);
       m.maxOverlap = contact::samplesInHalfSpaces(contactShape(a), contactPose(a), solid, margin, points);
     } else {
@@ -166,7 +150,7 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
         p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
         p.stiffness = modulus * patch.areas[k] / lengthScale;
         p.tangentStiffness = tangentRatio * p.stiffness;
-        if (const contact::PointHistory* old = findPoint(previous, p.key)) {
+        if (const contact::PointHistory* old = detail::findHistory(previous, p.key)) {
           p.normalImpulse = old->normalImpulse;
           p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
           p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);

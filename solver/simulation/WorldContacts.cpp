@@ -23,55 +23,9 @@ namespace armour::simulation {
 using detail::kConvexBit;
 using detail::kPlaneBit;
 using detail::kStaticBits;
-
-namespace {
-
-/// The friction history of sample `key` in a pair's history (sorted by key), or null.
-const contact::PointHistory* findHistory(const std::vector<std::pair<std::uint32_t, contact::PointHistory>>* h,
-                                         std::uint32_t key) {
-  if (h == nullptr) {
-    return nullptr;
-  }
-  auto it = std::lower_bound(h->begin(), h->end(), key, [](const auto& e, std::uint32_t k) { return e.first < k; });
-  return it != h->end() && it->first == key ? &it->second : nullptr;
-}
-
-/// A static solid as the half-spaces n_k . x <= d_k both contact models test against: a plane
-/// is one, a convex piece several. Views, no copies (every body-static pair, every step); the
-/// plane's offset is held here, so use offsets() while the target is alive.
-struct StaticTarget {
-  std::span<const Vec3> normals;
-  std::span<const double> pieceOffsets;
-  double planeOffset = 0.0;
-  bool plane = false;
-  MaterialId material = 0;
-  geometry::Box3 region; ///< where a body's surface can be inside it (world)
-  [[nodiscard]] std::span<const double> offsets() const {
-    return plane ? std::span<const double>(&planeOffset, 1) : pieceOffsets;
-  }
-};
-
-StaticTarget staticTarget(const std::vector<StaticPlane>& planes, const std::vector<StaticConvex>& convex, bool isPlane,
-                          std::uint32_t index, const geometry::Box3& bodyBox) {
-  StaticTarget t;
-  t.plane = isPlane;
-  if (isPlane) {
-    const StaticPlane& pl = planes[index];
-    t.planeOffset = pl.normal.dot(pl.point);
-    t.normals = std::span<const Vec3>(&pl.normal, 1);
-    t.material = pl.material;
-    t.region = bodyBox; // a plane reaches everywhere: the body's box bounds the search
-  } else {
-    const StaticConvex& piece = convex[index];
-    t.normals = piece.normals;
-    t.pieceOffsets = piece.offsets;
-    t.material = piece.material;
-    t.region = piece.box;
-  }
-  return t;
-}
-
-} // namespace
+using detail::findHistory;
+using detail::StaticTarget;
+using detail::staticTarget;
 
 /// What one candidate pair produces in the force stage: written by one thread, read serially.
 struct World::PairWork {

@@ -16,6 +16,33 @@ cases="$2"
 out="$3"
 rm -rf "$out" && mkdir -p "$out"
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# check_still BODIES_NC END_TIME LABEL: the run reached END_TIME, its four units rebounded by less than
+# 1 cm under the buoyancy, moved by less than 1 mm from 10 s to the end, and felt the full buoyancy.
+check_still() {
+  /usr/bin/python3 - "$1" "$2" "$3" <<'PY'
+import sys, netCDF4, numpy
+path, end, label = sys.argv[1], float(sys.argv[2]), sys.argv[3]
+with netCDF4.Dataset(path) as ds:
+    t = numpy.asarray(ds["time"][:])
+    names = [n.strip() for n in netCDF4.chartostring(ds["body_name"][:])]
+    x = numpy.asarray(ds["position"][:])              # (time, body, 3)
+    f = numpy.asarray(ds["hydro_force"][:])
+assert abs(t[-1] - end) < 0.5, t[-1]
+units = [i for i, n in enumerate(names) if n.startswith("unit_")]
+assert len(units) == 4, names
+k10 = int(numpy.searchsorted(t, 10.0))
+rebound = max(numpy.linalg.norm(x[k10, i] - x[0, i]) for i in units)
+moved = max(numpy.linalg.norm(x[-1, i] - x[k10, i]) for i in units)
+print(f"{label}: elastic rebound under buoyancy {rebound * 1e3:.3f} mm; largest move from 10 s to {end:g} s: "
+      f"{moved * 1e3:.4f} mm")
+assert rebound < 1e-2, rebound
+assert moved < 1e-3, moved
+buoyancy = 1025.0 * 9.81 * 7.234
+for i in units:
+    fz = f[-1, i, 2]
+    assert abs(fz - buoyancy) < 0.01 * buoyancy, (names[i], fz, buoyancy)
+PY
+}
 cp "$cases/dolos-smoke.yaml" "$out/dolos.yaml"
 "$armour" --log-level warn place "$out/dolos.yaml" --threads 1 > "$out/place.txt" || fail "place failed: $(cat "$out/place.txt")"
 printf 'output: {series_interval: 0.5, vtk_interval: 600}\n' >> "$out/dolos-placed.yaml"
@@ -24,27 +51,7 @@ printf 'output: {series_interval: 0.5, vtk_interval: 600}\n' >> "$out/dolos-plac
   --voxel 0.5 --swl 8 --depth 10 --trunk-origin -4 --trunk-length 8 --duration 600 --dt 0.5
 "$armour" --log-level warn storm "$out/dolos-placed.yaml" --storm "$out/still.nc" --threads 1 -o "$out/run" \
   > "$out/storm.txt" || fail "armour storm failed: $(cat "$out/storm.txt")"
-/usr/bin/python3 - "$out/run/bodies.nc" <<'PY' || fail "the pack moved in still water, or felt no water"
-import sys, netCDF4, numpy
-with netCDF4.Dataset(sys.argv[1]) as ds:
-    t = numpy.asarray(ds["time"][:])
-    names = [n.strip() for n in netCDF4.chartostring(ds["body_name"][:])]
-    x = numpy.asarray(ds["position"][:])              # (time, body, 3)
-    f = numpy.asarray(ds["hydro_force"][:])
-assert abs(t[-1] - 600.0) < 0.5, t[-1]
-units = [i for i, n in enumerate(names) if n.startswith("unit_")]
-assert len(units) == 4, names
-k10 = int(numpy.searchsorted(t, 10.0))
-rebound = max(numpy.linalg.norm(x[k10, i] - x[0, i]) for i in units)
-moved = max(numpy.linalg.norm(x[-1, i] - x[k10, i]) for i in units)
-print(f"elastic rebound under buoyancy: {rebound * 1e3:.3f} mm; largest move from 10 s to 600 s: {moved * 1e3:.4f} mm")
-assert rebound < 1e-2, rebound
-assert moved < 1e-3, moved
-buoyancy = 1025.0 * 9.81 * 7.234
-for i in units:
-    fz = f[-1, i, 2]
-    assert abs(fz - buoyancy) < 0.01 * buoyancy, (names[i], fz, buoyancy)
-PY
+check_still "$out/run/bodies.nc" 600 "penalty solver" || fail "the pack moved in still water, or felt no water"
 # A pack at rest in still water costs almost nothing: the run log says how much was skipped.
 asleep=$(grep -o "asleep [0-9.]* % of the movable body-steps" "$out/run/run.log" | awk '{print $2}')
 [[ -n "$asleep" ]] || fail "run.log does not report the sleeping body-steps"
@@ -73,23 +80,6 @@ grep -q "ramp_time = 1 s" "$out/dry-ramp/run.log" || fail "the ramp is not in th
   --duration 60 --set contact.solver=constraint > "$out/storm-constraint.txt" 2>&1 \
   || fail "armour storm with the constraint solver failed: $(cat "$out/storm-constraint.txt")"
 grep -q "time step by stage (constraint solver" "$out/run-constraint/run.log" || fail "run.log has no constraint-solver profile"
-/usr/bin/python3 - "$out/run-constraint/bodies.nc" <<'PY' || fail "constraint solver: the pack moved in still water, or felt no water"
-import sys, netCDF4, numpy
-with netCDF4.Dataset(sys.argv[1]) as ds:
-    t = numpy.asarray(ds["time"][:])
-    names = [n.strip() for n in netCDF4.chartostring(ds["body_name"][:])]
-    x = numpy.asarray(ds["position"][:])
-    f = numpy.asarray(ds["hydro_force"][:])
-assert abs(t[-1] - 60.0) < 0.5, t[-1]
-units = [i for i, n in enumerate(names) if n.startswith("unit_")]
-k10 = int(numpy.searchsorted(t, 10.0))
-rebound = max(numpy.linalg.norm(x[k10, i] - x[0, i]) for i in units)
-moved = max(numpy.linalg.norm(x[-1, i] - x[k10, i]) for i in units)
-print(f"constraint solver: rebound {rebound * 1e3:.3f} mm; largest move from 10 s to 60 s: {moved * 1e3:.4f} mm")
-assert rebound < 1e-2, rebound
-assert moved < 1e-3, moved
-buoyancy = 1025.0 * 9.81 * 7.234
-for i in units:
-    assert abs(f[-1, i, 2] - buoyancy) < 0.01 * buoyancy, (names[i], f[-1, i, 2], buoyancy)
-PY
+check_still "$out/run-constraint/bodies.nc" 60 "constraint solver" \
+  || fail "constraint solver: the pack moved in still water, or felt no water"
 echo "storm_still: OK ($asleep % of the body-steps asleep; dry units skipped)"
