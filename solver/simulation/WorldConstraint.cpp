@@ -36,6 +36,30 @@ namespace {
 /// resting overlap at E_p = 1e8 Pa).
 constexpr double kKeepDepthPerDn = 1e-3;
 
+/// A pair's contact history as the World holds it: (sample key, point history), sorted by key.
+using PointHistories = std::vector<std::pair<std::uint32_t, contact::PointHistory>>;
+
+/// The previous step's point of pair (a, b) nearest to `point` (world) within `radius` (m), or null.
+/// A key is a sample index of A, or of B with the reverse bit; `samplePosition(owner, sample)` gives
+/// that sample's world position now (or NaN when the index does not exist).
+template <typename SamplePosition>
+const contact::PointHistory* nearestPreviousPoint(const contact::BodyPair& key, const PointHistories& previous,
+                                                  const Vec3& point, double radius, SamplePosition&& samplePosition) {
+  const bool isStatic = (key.second & kStaticBits) != 0;
+  const contact::PointHistory* nearest = nullptr;
+  double closest = radius * radius;
+  for (const auto& [k, h] : previous) {
+    const bool ofB = (k & detail::kReverseBit) != 0;
+    if (ofB && isStatic) continue;
+    const Vec3 x = samplePosition(ofB ? key.second : key.first, k & ~detail::kReverseBit);
+    if (const double d = (x - point).squaredNorm(); d < closest) {
+      closest = d;
+      nearest = &h;
+    }
+  }
+  return nearest;
+}
+
 } // namespace
 
 void World::collideConstraint(std::vector<PairManifold>& manifolds) {
@@ -130,6 +154,11 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
     const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
     const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
     const double tangentRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
+    const auto samplePosition = [&](BodyId owner, std::uint32_t sample) {
+      const ShapeModel& shape = *shapes_[bodyShape_[owner]];
+      if (sample >= shape.samples->size()) return Vec3(Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+      return Vec3(bodies_.toWorld(owner, bodyScale_[owner] * shape.samples->positions()[sample]));
+    };
     for (const auto& patch : m.patches) {
       contact::ContactConstraint c;
       c.bodyA = solverIndex_[a];
@@ -150,7 +179,14 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
         p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
         p.stiffness = modulus * patch.areas[k] / lengthScale;
         p.tangentStiffness = tangentRatio * p.stiffness;
-        if (const contact::PointHistory* old = detail::findHistory(previous, p.key)) {
+        const contact::PointHistory* old = detail::findHistory(previous, p.key);
+        if (old == nullptr && previous != nullptr) {
+          // A point new to the reduction takes over the nearest point of the previous step's
+          // (within 0.15 Dn, one and a half sample spacings at the default): the anchor of the
+          // friction spring there is not lost when the reduction picks a neighbouring sample.
+          old = nearestPreviousPoint(m.key, *previous, patch.points[k], 0.15 * lengthScale, samplePosition);
+        }
+        if (old != nullptr) {
           p.normalImpulse = old->normalImpulse;
           p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
           p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
