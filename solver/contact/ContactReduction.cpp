@@ -74,9 +74,13 @@ ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, const st
     patch.normals[k] = p.normal;
     patch.areas[k] = p.area;
   }
-  // Every other penetrating sample lends its area to the nearest kept point.
+  // Every other sample lends its area to the nearest kept point, in full inside the other body,
+  // fading to nothing at the gap rampDepth outside.
   for (int m : members) {
-    if (!(points[m].depth > 0.0) || m == chosen[0] || m == chosen[1] || m == chosen[2] || m == chosen[3]) continue;
+    if (m == chosen[0] || m == chosen[1] || m == chosen[2] || m == chosen[3]) continue;
+    const double weight = settings.rampDepth > 0.0 ? std::clamp(1.0 + points[m].depth / settings.rampDepth, 0.0, 1.0)
+                                                   : (points[m].depth > 0.0 ? 1.0 : 0.0);
+    if (weight == 0.0) continue;
     int nearest = 0;
     double closest = std::numeric_limits<double>::infinity();
     for (int k = 0; k < count; ++k) {
@@ -86,7 +90,7 @@ ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, const st
         nearest = k;
       }
     }
-    patch.areas[nearest] += points[m].area;
+    patch.areas[nearest] += weight * points[m].area;
   }
   return patch;
 }

@@ -37,6 +37,9 @@ struct ReductionSettings {
   /// without it the choice flips with every micro-rotation and the warm start is lost.
   double keepDepth = 0.0;
   double keepFactor = 1.1;     ///< unit: -
+  /// A sample's area enters its kept point's spring with the weight clamp(1 + depth / rampDepth,
+  /// 0, 1): all of it inside, none beyond this gap (unit: m); 0: inside only (a step).
+  double rampDepth = 0.0;
 };
 
 /// A reduced contact patch: one normal, up to four points.
@@ -48,8 +51,9 @@ struct ContactPatchPoints {
   Vec3 normals[4];                   ///< each kept sample's own normal (unit: -)
   double depths[4] = {0, 0, 0, 0};   ///< along `normal`, > 0 penetrating (unit: m)
   /// Tributary area each kept point stands for (unit: m^2): its own, plus that of every
-  /// penetrating sample of the patch nearer to it than to the other kept points, so that the
-  /// points' springs E_p a_k / L add up to the penalty law's over the patch.
+  /// sample of the patch nearer to it than to the other kept points, weighted from 1 inside the
+  /// other body to 0 at the gap rampDepth (ReductionSettings), so that the points' springs
+  /// E_p a_k / L add up to the penalty law's over the patch and change smoothly with the depths.
   double areas[4] = {0, 0, 0, 0};
 };
 
