@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "simulation/World.hpp"
+#include "support/CubeScene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,47 +18,11 @@
 
 using namespace armour;
 using namespace armour::simulation;
+using armour::test::concrete;
+using armour::test::CubeScene;
+using armour::test::noSleep;
 
 namespace {
-
-WorldSettings noSleep() {
-  WorldSettings s;
-  s.sleep.enabled = false;
-  return s;
-}
-
-/// A world with one material, one shape (a cube of side 1 m unless told) and helpers.
-struct CubeScene {
-  World world;
-  MaterialId material = 0;
-  ShapeId cube = 0;
-
-  /// Sleeping is off unless a test turns it on: these tests are about the contact physics.
-  explicit CubeScene(const Material& m = {}, WorldSettings settings = noSleep()) : world(settings) {
-    material = world.addMaterial(m);
-    geometry::ShapeRequest r;
-    r.volume = 1.0;
-    cube = world.addShape("cube", geometry::makeShape("cube", r));
-  }
-  BodyId addCube(const Vec3& position, const Quat& orientation = Quat::Identity(), const Vec3& velocity = Vec3::Zero()) {
-    BodySpec b;
-    b.shape = cube;
-    b.material = material;
-    b.position = position;
-    b.orientation = orientation;
-    b.velocity = velocity;
-    return world.addBody(b);
-  }
-  void addFloor(const Vec3& normal = Vec3::UnitZ()) { world.addPlane({"floor", Vec3::Zero(), normal, material}); }
-};
-
-Material concrete(double restitution, double mu) {
-  Material m;
-  m.name = "concrete";
-  m.restitution = restitution;
-  m.frictionStatic = m.frictionDynamic = mu;
-  return m;
-}
 
 /// Drop a cube flat from `gap` above the floor; return (impact speed, rebound speed) of the first
 /// bounce. The rebound speed is the largest upward speed within 50 ms of the first contact: it is

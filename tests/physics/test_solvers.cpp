@@ -14,6 +14,7 @@
 #include "geometry/ShapeLibrary.hpp"
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/World.hpp"
+#include "support/CubeScene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,6 +28,8 @@
 
 using namespace armour;
 using namespace armour::simulation;
+using armour::test::concrete;
+using armour::test::CubeScene;
 
 namespace {
 
@@ -54,51 +57,19 @@ WorldSettings settingsFor(ContactSolverKind kind, bool sleep = false) {
   return s;
 }
 
-Material concrete(double restitution, double mu) {
-  Material m;
-  m.name = "concrete";
-  m.restitution = restitution;
-  m.frictionStatic = m.frictionDynamic = mu;
-  return m;
-}
-
-/// A world with one material and a unit cube shape (scaled per body).
-struct Cubes {
-  World world;
-  MaterialId material = 0;
-  ShapeId cube = 0;
-  Cubes(const WorldSettings& settings, const Material& m) : world(settings) {
-    material = world.addMaterial(m);
-    geometry::ShapeRequest r;
-    r.volume = 1.0;
-    cube = world.addShape("cube", geometry::makeShape("cube", r));
-  }
-  BodyId add(const Vec3& x, double scale = 1.0, const Quat& q = Quat::Identity(), const Vec3& v = Vec3::Zero()) {
-    BodySpec b;
-    b.shape = cube;
-    b.material = material;
-    b.scale = scale;
-    b.position = x;
-    b.orientation = q;
-    b.velocity = v;
-    return world.addBody(b);
-  }
-  void floor(const Vec3& normal = Vec3::UnitZ()) { world.addPlane({"floor", Vec3::Zero(), normal, material}); }
-};
-
 class BothSolvers : public ::testing::TestWithParam<ContactSolverKind> {};
 
 std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) { return solverName(info.param); }
 
 /// A cube on a plane inclined at theta (descending towards +x).
-struct Slope : Cubes {
+struct Slope : CubeScene {
   BodyId block = 0;
   Vec3 downhill;
-  Slope(ContactSolverKind kind, double theta, double mu) : Cubes(settingsFor(kind), concrete(0.3, mu)) {
+  Slope(ContactSolverKind kind, double theta, double mu) : CubeScene(concrete(0.3, mu), settingsFor(kind)) {
     const Vec3 normal(std::sin(theta), 0, std::cos(theta));
     downhill = Vec3(std::cos(theta), 0, -std::sin(theta));
-    floor(normal);
-    block = add(0.5 * normal, 1.0, Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())));
+    addFloor(normal);
+    block = addCube(0.5 * normal, Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())));
   }
   [[nodiscard]] double along() const { return world.bodies().position(block).dot(downhill); }
 };
@@ -136,9 +107,9 @@ TEST_P(BothSolvers, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAcceleratio
 TEST_P(BothSolvers, DropReboundsWithTheTargetRestitution) {
   // A cube dropped flat from 0.5 m (3.1 m/s): rebound speed / impact speed within 0.05 of e.
   for (double e : {0.05, 0.5, 0.9}) {
-    Cubes s(settingsFor(GetParam()), concrete(e, 0.5));
-    s.floor();
-    const BodyId b = s.add(Vec3(0, 0, 1.0));
+    CubeScene s(concrete(e, 0.5), settingsFor(GetParam()));
+    s.addFloor();
+    const BodyId b = s.addCube(Vec3(0, 0, 1.0));
     double impact = 0.0, rebound = 0.0, tContact = -1.0;
     while (s.world.time() < 2.0) {
       const double vz = s.world.bodies().velocity(b).z();
@@ -163,10 +134,10 @@ TEST_P(BothSolvers, TowerOfTenCubesStandsStill) {
   // cube moves 1 mm in 60 s (issue 22). The penalty solver needs 500 s of a core for it: in CI it is
   // test_stacks_at_rest's TowerOfTenCubesStandsStillWithoutSleeping, here only in the slow variant.
   if (!kLong && GetParam() == ContactSolverKind::Penalty) GTEST_SKIP() << "penalty: test_solvers_long";
-  Cubes s(settingsFor(GetParam()), concrete(0.3, 0.6));
-  s.floor();
+  CubeScene s(concrete(0.3, 0.6), settingsFor(GetParam()));
+  s.addFloor();
   std::vector<BodyId> blocks;
-  for (int k = 0; k < 10; ++k) blocks.push_back(s.add(Vec3(k % 2 == 0 ? 0.0 : 0.01, 0.0, 0.5 + k * 1.001)));
+  for (int k = 0; k < 10; ++k) blocks.push_back(s.addCube(Vec3(k % 2 == 0 ? 0.0 : 0.01, 0.0, 0.5 + k * 1.001)));
   s.world.advanceTo(2.0);
   std::vector<Vec3> start;
   for (BodyId b : blocks) start.push_back(s.world.bodies().position(b));
@@ -184,10 +155,10 @@ TEST_P(BothSolvers, MassRatio100StackRests) {
   // The 4.64 m cube (100 x the mass) balanced on the 1 m cube: after 5 s of settling neither moves
   // 1 mm in 10 s and the heavy one stays upright.
   const double big = std::cbrt(100.0);
-  Cubes s(settingsFor(GetParam()), concrete(0.3, 0.6));
-  s.floor();
-  const BodyId light = s.add(Vec3(0, 0, 0.5));
-  const BodyId heavy = s.add(Vec3(0, 0, 1.0 + 0.5 * big), big);
+  CubeScene s(concrete(0.3, 0.6), settingsFor(GetParam()));
+  s.addFloor();
+  const BodyId light = s.addCube(Vec3(0, 0, 0.5));
+  const BodyId heavy = s.addCube(Vec3(0, 0, 1.0 + 0.5 * big), Quat::Identity(), Vec3::Zero(), big);
   s.world.advanceTo(5.0);
   const Vec3 l0 = s.world.bodies().position(light), h0 = s.world.bodies().position(heavy);
   s.world.advanceTo(15.0);
@@ -209,9 +180,9 @@ TEST(ConstraintSolver, StepsOutsideTheMeasuredRangeAreRefusedWithTheLimit) {
   for (double dt : {0.1, 1e-8}) {
     WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
     settings.timeStep = dt;
-    Cubes s(settings, concrete(0.3, 0.5));
-    s.floor();
-    s.add(Vec3(0, 0, 1));
+    CubeScene s(concrete(0.3, 0.5), settings);
+    s.addFloor();
+    s.addCube(Vec3(0, 0, 1));
     try {
       s.world.step();
       ADD_FAILURE() << "a step of " << dt << " s must be refused";
@@ -226,9 +197,9 @@ TEST(ConstraintSolver, LargestStepDropsAndRestsACube) {
   // below 1 mm/s and it sits on its face within 2 mm.
   WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
   settings.timeStep = kMaxConstraintStep;
-  Cubes s(settings, concrete(0.05, 0.6));
-  s.floor();
-  const BodyId b = s.add(Vec3(0, 0, 2.5));
+  CubeScene s(concrete(0.05, 0.6), settings);
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 2.5));
   s.world.advanceTo(3.0);
   EXPECT_LT(s.world.bodies().velocity(b).norm(), 1e-3);
   EXPECT_NEAR(s.world.bodies().position(b).z(), 0.5, 2e-3);
@@ -238,9 +209,9 @@ TEST(ConstraintSolver, SmallestUsefulStepHoldsTheRestingState) {
   // dt = 1e-5 s (500 x below the default): a resting cube stays within 0.1 mm over 0.2 s.
   WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
   settings.timeStep = 1e-5;
-  Cubes s(settings, concrete(0.3, 0.6));
-  s.floor();
-  const BodyId b = s.add(Vec3(0, 0, 0.5));
+  CubeScene s(concrete(0.3, 0.6), settings);
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5));
   s.world.advanceTo(0.2);
   EXPECT_NEAR(s.world.bodies().position(b).z(), 0.5, 1e-4);
 }
@@ -248,15 +219,15 @@ TEST(ConstraintSolver, SmallestUsefulStepHoldsTheRestingState) {
 namespace {
 
 /// A loose pile of 18 cubes (3 x 3 x 2, small random tilts) under the constraint solver.
-struct Pile : Cubes {
-  explicit Pile(bool sleep = false) : Cubes(settingsFor(ContactSolverKind::Constraint, sleep), concrete(0.3, 0.6)) {
-    floor();
+struct Pile : CubeScene {
+  explicit Pile(bool sleep = false) : CubeScene(concrete(0.3, 0.6), settingsFor(ContactSolverKind::Constraint, sleep)) {
+    addFloor();
     std::mt19937_64 rng(11);
     for (int k = 0; k < 2; ++k) {
       for (int j = 0; j < 3; ++j) {
         for (int i = 0; i < 3; ++i) {
           const double tilt = 0.2 * ((rng() >> 11) * 0x1.0p-53 - 0.5);
-          add(Vec3(1.05 * i + 0.3 * k, 1.05 * j, 0.52 + 1.04 * k), 1.0,
+          addCube(Vec3(1.05 * i + 0.3 * k, 1.05 * j, 0.52 + 1.04 * k),
               Quat(Eigen::AngleAxisd(tilt, Vec3(1, 1, 0).normalized())));
         }
       }
@@ -318,9 +289,9 @@ TEST(ConstraintSolver, RestartFromACheckpointIsBitIdentical) {
 TEST(ConstraintSolver, WarmStartCarriesTheRestingLoad) {
   // A cube at rest on the floor: the stored normal impulses per substep sum to its weight times
   // the substep (within 1 %), so the next step starts from the right force.
-  Cubes s(settingsFor(ContactSolverKind::Constraint), concrete(0.3, 0.6));
-  s.floor();
-  const BodyId b = s.add(Vec3(0, 0, 0.5));
+  CubeScene s(concrete(0.3, 0.6), settingsFor(ContactSolverKind::Constraint));
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5));
   s.world.setRecordContacts(true);
   s.world.advanceTo(1.0);
   ASSERT_EQ(s.world.contactPatches().size(), 1u);
