@@ -510,7 +510,13 @@ std::string describeBuild(const io::Scene& scene, const BuiltScene& built) {
   } else {
     out += "stable time step: none (no dynamic body)\n";
   }
-  if (scene.timeStep.automatic) {
+  if (scene.contact.solver == io::ContactSolver::Constraint) {
+    // The stable step above is the penalty solver's; the constraint solver has its own step.
+    out += fmt::format("time step: {:.6g} s (constraint solver, {}; {} substeps; the stable step above is the "
+                       "penalty solver's)\n",
+                       built.timeStep, scene.timeStep.automatic ? "contact.constraint.time_step" : "time_step",
+                       scene.contact.constraint.substeps);
+  } else if (scene.timeStep.automatic) {
     out += fmt::format("time step: {:.6g} s (auto: {} x the stable step)\n", built.timeStep, scene.timeStep.safety);
   } else {
     out += fmt::format("time step: {:.6g} s (fixed: {:.3g} x the stable step)\n", built.timeStep,
