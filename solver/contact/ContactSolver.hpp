@@ -99,7 +99,6 @@ struct ConstraintPoint {
 /// A reduced contact patch between bodies A (pushed along the normal) and B, as a constraint.
 struct ContactConstraint {
   int bodyA = 0, bodyB = 0;       ///< solver body indices, 0 for the ground
-  Vec3 normal = Vec3::UnitZ();    ///< the patch's mean normal (unit, from B into A); each point has its own
   double friction = 0.0;          ///< Coulomb mu_s, while sticking (unit: -)
   double frictionDynamic = 0.0;   ///< Coulomb mu_d, while sliding (unit: -)
   double restitution = 0.0;       ///< e (unit: -)

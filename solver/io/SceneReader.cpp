@@ -594,9 +594,6 @@ void readConstraintSettings(const Block& c, Scene& scene) {
                 kConstraintKeys);
   if (c.has("constraint") && scene.contact.solver != ContactSolver::Constraint)
     c.warnValue("constraint", "applies to contact.solver: constraint only; the penalty solver ignores it");
-  if (c.has("constraint") && scene.contact.model == ContactModel::Fdem)
-    c.failValue("solver", "the constraint solver runs on the level-set narrow phase; use contact.model: levelset, "
-                          "or contact.solver: penalty with fdem");
   if (scene.contact.solver == ContactSolver::Constraint && scene.contact.model == ContactModel::Fdem)
     c.failValue("solver", "the constraint solver runs on the level-set narrow phase; use contact.model: levelset, "
                           "or contact.solver: penalty with fdem");

@@ -187,7 +187,6 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
       contact::ContactConstraint c;
       c.bodyA = solverIndex_[a];
       c.bodyB = isStatic ? 0 : solverIndex_[m.key.second];
-      c.normal = patch.normal;
       c.friction = std::min(ma.frictionStatic, mb.frictionStatic);
       c.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
       c.restitution = std::min(ma.restitution, mb.restitution);

@@ -21,7 +21,7 @@ namespace armour::simulation::detail {
 constexpr std::uint32_t kPlaneBit = 0x80000000u;  ///< second pair index of a body-plane pair
 constexpr std::uint32_t kConvexBit = 0x40000000u; ///< second pair index of a body-convex pair
 constexpr std::uint32_t kStaticBits = kPlaneBit | kConvexBit;
-constexpr std::uint32_t kReverseBit = 0x80000000u; ///< sample key: B's samples in A (contact::kReverseSampleBit)
+constexpr std::uint32_t kReverseBit = contact::kReverseSampleBit; ///< sample key: B's samples in A (NarrowPhase.hpp)
 
 /// The friction history of sample `key` in a pair's history (sorted by key), or null.
 inline const contact::PointHistory* findHistory(

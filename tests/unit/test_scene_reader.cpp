@@ -891,3 +891,23 @@ TEST(SceneOverrides, BadOptionsNameTheOptionAndTheFix) {
   EXPECT_CONTAINS(overrideError(yaml, {"materials[0].density=2"}), "'materials' is not a list in the scene");
   EXPECT_CONTAINS(overrideError(yaml, {"gravity=[0, 0"}), "is not valid YAML");
 }
+
+TEST(SceneContactSolver, ConstraintSettingsAreReadAndBadOnesNamed) {
+  // contact.solver and contact.constraint (issue 22): read with their defaults, refused with the
+  // key, the value and the fix when out of range or combined with the fdem model.
+  const Scene d = parseScene(oneBody(), kScenes, "t.yaml");
+  EXPECT_EQ(d.contact.solver, ContactSolver::Penalty);
+  const Scene c = parseScene("contact: {solver: constraint, constraint: {time_step: 0.01, substeps: 8}}\n" + oneBody(),
+                             kScenes, "t.yaml");
+  EXPECT_EQ(c.contact.solver, ContactSolver::Constraint);
+  EXPECT_DOUBLE_EQ(c.contact.constraint.timeStep, 0.01);
+  EXPECT_EQ(c.contact.constraint.substeps, 8u);
+  EXPECT_DOUBLE_EQ(c.contact.constraint.dampingRatio, 10.0);
+  const std::string fdem = errorFrom("contact: {model: fdem, solver: constraint}\n" + oneBody());
+  EXPECT_NE(fdem.find("contact.solver"), std::string::npos) << fdem;
+  EXPECT_NE(fdem.find("use contact.model: levelset"), std::string::npos) << fdem;
+  const std::string step = errorFrom("contact: {solver: constraint, constraint: {time_step: 0.1}}\n" + oneBody());
+  EXPECT_NE(step.find("contact.constraint.time_step"), std::string::npos) << step;
+  const std::string sub = errorFrom("contact: {solver: constraint, constraint: {substeps: 100}}\n" + oneBody());
+  EXPECT_NE(sub.find("at most 64 substeps"), std::string::npos) << sub;
+}
