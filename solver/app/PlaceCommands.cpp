@@ -102,6 +102,11 @@ void placeScene(const PlaceOptions& o) {
   if (ec) core::failInput(scene.output.folder.string(), "cannot create the output folder ({}); set output.folder in {} "
                                                         "or --set output.folder=... to a writable place",
                           ec.message(), o.file);
+  // The placed scene's folder too, now: not after an hour of placing (its files are written last).
+  fs::create_directories(scenePath.parent_path(), ec);
+  if (ec) core::failInput(o.output.empty() ? "placement.output" : "--output",
+                          "cannot create the folder {} of the placed scene ({}); give a path in a writable folder",
+                          scenePath.parent_path().string(), ec.message());
   const StopSignals signals;
   auto lastCheckpoint = std::chrono::steady_clock::now();
   placement::PlaceOptions options;

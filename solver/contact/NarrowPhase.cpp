@@ -84,10 +84,18 @@ bool apart(const ContactShape& a, const ContactPose& pa, const ContactShape& b, 
   return false;
 }
 
-/// One direction of a body pair: the probe's samples in the target's level set.
+/// How much the interpolated level-set value (LevelSet::value, inside and outside the grid) can
+/// change when its argument moves by d: at most (1 + sqrt(3)) d. Inside the grid each partial
+/// derivative of the trilinear interpolant is a weighted mean of node differences over h, at most 1
+/// for node values that are exact distances; outside, the clamp to the grid moves no coordinate more
+/// than the point and the distance to the grid box is 1-Lipschitz. With 0.01 % for the float nodes.
+constexpr double kValueLipschitz = (1.0 + 1.7320508075688772) * 1.0001;
+
+/// One direction of a body pair: the probe's samples in the target's level set. With a list, the
+/// list is used when it covers this call, and made anew (a full search with margin + slack) when not.
 void probeSamples(const ContactShape& ps, const ContactPose& probe, const ContactShape& ts, const ContactPose& target,
-                  double weight, std::uint32_t keyBit, bool flip, double margin, double& maxOverlap,
-                  std::vector<ContactPoint>& out) {
+                  double weight, std::uint32_t keyBit, bool flip, double margin, double slack, NearSampleList* list,
+                  PairSampleCache* cache, double& maxOverlap, std::vector<ContactPoint>& out) {
   const double sp = probe.scale;
   const double st = target.scale;
   const Mat3& Rp = probe.rotation;
@@ -101,46 +109,97 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
   const Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
   const Vec3 trel = Rt.transpose() * (xp - xt) / st;
   // phi < m needs L within the target's mesh bounds grown by sqrt(3) h + m (LevelSet::mayPenetrate).
-  const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * ls.cellSize() + m);
+  const double h = ls.cellSize();
+  const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * h + m);
   const Vec3 targetLo = ls.meshBounds().min - grow;
   const Vec3 targetHi = ls.meshBounds().max + grow;
+  const auto inBox = [](const Vec3& L, const Vec3& lo, const Vec3& hi) {
+    return !((L.array() < lo.array()).any() || (L.array() > hi.array()).any());
+  };
+  // A sample within the margin (in the grown box, value below m): its contact point, if any.
+  const auto emit = [&](std::uint32_t i, const Vec3& L) {
+    const LevelSetQuery q = ls.query(L);
+    if (q.phi < 0.0) {
+      // Engaged or not, the guard rails see every point inside: past the other body's middle a
+      // point faces the wrong way and is not engaged, but the overlap is real.
+      maxOverlap = std::max(maxOverlap, -q.phi * st);
+    }
+    if (q.phi < m && q.normal.squaredNorm() > 0.0) {
+      const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
+      const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
+      // The direction's weight scales the tributary area (k = E_p a / L is linear in a).
+      const double area = -weight * sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
+      if (area > 0.0) {
+        out.push_back({keyBit | i, X, flip ? Vec3(-n) : n, -q.phi * st, area});
+      }
+    }
+  };
+  const auto consider = [&](std::uint32_t i, const Vec3& L) {
+    if (inBox(L, targetLo, targetHi) && ls.value(L) < m) {
+      emit(i, L);
+    }
+  };
+  if (list != nullptr && list->reach >= 0.0 && list->probe == ps.samples && list->target == ts.levelSet) {
+    // How far any sample can have moved in the target frame since the list was made: the change of
+    // the translation plus the change of the rotation (Frobenius norm, above the spectral one) times
+    // the probe's radius; the list covers this call while its reach holds the margin plus what the
+    // value can have changed over that distance.
+    const double moved = (trel - list->translation).norm() + (Rrel - list->rotation).norm() * ps.radius;
+    if (m + kValueLipschitz * moved + 1e-6 * h <= list->reach) {
+      ++cache->reuses;
+      for (const std::uint32_t i : list->samples) {
+        consider(i, Rrel * samples.positions()[i] + trel);
+      }
+      return;
+    }
+  }
+  // A full search, with the reach of the list when one is made.
+  const double reach = list != nullptr ? m + slack / st : m;
+  if (list != nullptr) {
+    ++cache->searches;
+    list->probe = ps.samples;
+    list->target = ts.levelSet;
+    list->rotation = Rrel;
+    list->translation = trel;
+    list->reach = reach;
+    list->samples.clear();
+  }
+  const Vec3 reachLo = ls.meshBounds().min - Vec3::Constant(std::sqrt(3.0) * h + reach);
+  const Vec3 reachHi = ls.meshBounds().max + Vec3::Constant(std::sqrt(3.0) * h + reach);
   // The target's grown mesh box (an oriented box) seen from the probe's unscaled body frame, as an
   // axis-aligned box there: tighter than the target's world box.
   const Mat3 toProbe = Rp.transpose() * Rt * (st / sp);
-  const Vec3 centre = toProbe * (0.5 * (targetLo + targetHi)) + Rp.transpose() * (xt - xp) / sp;
-  const Vec3 half = toProbe.cwiseAbs() * (0.5 * (targetHi - targetLo));
-  const double h = ls.cellSize();
+  const Vec3 centre = toProbe * (0.5 * (reachLo + reachHi)) + Rp.transpose() * (xt - xp) / sp;
+  const Vec3 half = toProbe.cwiseAbs() * (0.5 * (reachHi - reachLo));
   const SampleBuckets& bk = *ps.buckets;
   forBucketsNear(bk, centre - half, centre + half, [&](int cell, const Vec3& /*low*/) {
     // Whole bucket first, by the sphere around its samples (radius r, centre c, in the target
-    // frame): an interpolated phi < m at x needs a true distance below sqrt(3) h + m there, and the
-    // true distance at x is at least that at c minus r; so a lower bound of the distance at c
-    // above r + sqrt(3) h + m rules out the whole bucket.
+    // frame): an interpolated phi < reach at x needs a true distance below sqrt(3) h + reach there,
+    // and the true distance at x is at least that at c minus r; so a lower bound of the distance
+    // at c above r + sqrt(3) h + reach rules out the whole bucket.
     const Vec3 bc = Rrel * bk.sphereCentre[cell] + trel;
     const double r = bk.sphereRadius[cell] * (sp / st);
-    if (ls.distanceLowerBound(bc) - r > std::sqrt(3.0) * h + m) {
+    if (ls.distanceLowerBound(bc) - r > std::sqrt(3.0) * h + reach) {
       return;
     }
     for (std::uint32_t j = bk.start[cell]; j < bk.start[cell + 1]; ++j) {
       const std::uint32_t i = bk.samples[j];
       const Vec3 L = Rrel * samples.positions()[i] + trel;
-      if ((L.array() < targetLo.array()).any() || (L.array() > targetHi.array()).any() || !(ls.value(L) < m)) {
+      if (list == nullptr) {
+        consider(i, L);
         continue;
       }
-      const LevelSetQuery q = ls.query(L);
-      if (q.phi < 0.0) {
-        // Engaged or not, the guard rails see every point inside: past the other body's middle a
-        // point faces the wrong way and is not engaged, but the overlap is real.
-        maxOverlap = std::max(maxOverlap, -q.phi * st);
+      // Listed: within the reach's box and value (a sample outside them stays beyond the margin
+      // while the motion bound above holds: the box and the true distance are 1-Lipschitz).
+      if (!inBox(L, reachLo, reachHi)) {
+        continue;
       }
-      if (q.phi < m && q.normal.squaredNorm() > 0.0) {
-        const Vec3 X = xp + Rp * (sp * samples.positions()[i]);
-        const Vec3 n = Rt * q.normal; // out of the target: pushes the probe
-        // The direction's weight scales the tributary area (k = E_p a / L is linear in a).
-        const double area = -weight * sp * sp * (Rp * samples.areaVectors()[i]).dot(n);
-        if (area > 0.0) {
-          out.push_back({keyBit | i, X, flip ? Vec3(-n) : n, -q.phi * st, area});
-        }
+      const double value = ls.value(L);
+      if (value < reach) {
+        list->samples.push_back(i);
+      }
+      if (value < m && inBox(L, targetLo, targetHi)) {
+        emit(i, L);
       }
     }
   });
@@ -149,7 +208,7 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
 } // namespace
 
 double samplesInLevelSets(const ContactShape& a, const ContactPose& pa, const ContactShape& b, const ContactPose& pb,
-                          double margin, std::vector<ContactPoint>& out) {
+                          double margin, std::vector<ContactPoint>& out, PairSampleCache* cache, double slack) {
   double maxOverlap = 0.0;
   if (apart(a, pa, b, pb, margin)) {
     return maxOverlap;
@@ -160,8 +219,11 @@ double samplesInLevelSets(const ContactShape& a, const ContactPose& pa, const Co
   // times its size (mass ratio 100) is measured mostly by its own fine samples, not by the few
   // coarse samples of the big one that fall on its small face. B's points are flipped to push A.
   const double hA2 = pa.dn * pa.dn, hB2 = pb.dn * pb.dn;
-  probeSamples(a, pa, b, pb, hB2 / (hA2 + hB2), 0u, false, margin, maxOverlap, out);
-  probeSamples(b, pb, a, pa, hA2 / (hA2 + hB2), kReverseSampleBit, true, margin, maxOverlap, out);
+  NearSampleList* listA = cache != nullptr ? &cache->directions[0] : nullptr;
+  NearSampleList* listB = cache != nullptr ? &cache->directions[1] : nullptr;
+  probeSamples(a, pa, b, pb, hB2 / (hA2 + hB2), 0u, false, margin, slack, listA, cache, maxOverlap, out);
+  probeSamples(b, pb, a, pa, hA2 / (hA2 + hB2), kReverseSampleBit, true, margin, slack, listB, cache, maxOverlap,
+               out);
   return maxOverlap;
 }
 

@@ -32,6 +32,7 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -82,10 +83,35 @@ struct HalfSpaces {
 double samplesInHalfSpaces(const ContactShape& a, const ContactPose& pa, const HalfSpaces& solid, double margin,
                            std::vector<ContactPoint>& out);
 
+/// What the last full search of one direction of a body pair (the probe's samples in the target's
+/// level set) found within its reach: while the pair has not moved far enough since, the samples
+/// outside this list cannot come within the margin, and only the list is tested. Exact: the points
+/// found, their order and their arithmetic are those of a full search (docs/theory.md, "Near-sample
+/// lists").
+struct NearSampleList {
+  const SurfaceSamples* probe = nullptr; ///< the shapes the list was made for
+  const LevelSet* target = nullptr;
+  Mat3 rotation = Mat3::Zero();          ///< probe frame -> target frame at the search (unscaled, with sp/st)
+  Vec3 translation = Vec3::Zero();       ///< (target frame, unscaled: m / st)
+  double reach = -1.0;                   ///< margin + slack of the search (target frame, unscaled); < 0: none
+  std::vector<std::uint32_t> samples;    ///< in the order a full search visits them
+};
+
+/// A body pair's two near-sample lists (A's samples in B, B's samples in A) and how often they served.
+struct PairSampleCache {
+  std::array<NearSampleList, 2> directions;
+  std::uint32_t searches = 0; ///< full searches made (both directions counted)
+  std::uint32_t reuses = 0;   ///< directions served from the list
+};
+
 /// The samples of each body inside (or within `margin` of) the other, appended to `out` (A's samples
 /// first, then B's). Returns the deepest penetration of any sample inside, facing or not (unit: m).
+/// With a cache, a full search lists the samples within margin + `slack` (m) and later calls test
+/// only those while the pair's relative motion since stays within what the slack covers; the result
+/// is the same as without the cache, bit for bit.
 double samplesInLevelSets(const ContactShape& a, const ContactPose& pa, const ContactShape& b, const ContactPose& pb,
-                          double margin, std::vector<ContactPoint>& out);
+                          double margin, std::vector<ContactPoint>& out, PairSampleCache* cache = nullptr,
+                          double slack = 0.0);
 
 /// True when a sample of `probe` lies within `clearance` (m) of `target`'s surface or inside it
 /// (the placement's touch test; one direction). Poses in any common frame.

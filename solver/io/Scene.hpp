@@ -233,6 +233,9 @@ struct ContactSettings {
   /// (unit: -). A quarter of Dn is some 150 times the overlap of a 1 m/s impact at the default
   /// penalty: it trips on a blow-up or on bodies that start inside each other, not on physics.
   double maxOverlap = 0.25;
+  /// Near-sample lists of the narrow phase: slack x the smaller Dn (docs/theory.md section 7); exact, a
+  /// speed setting only; 0 = off.
+  double sampleListSlack = 0.05;
 };
 
 struct OutputSettings {

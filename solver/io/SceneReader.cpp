@@ -578,7 +578,7 @@ const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
                        "placement",   "initial_state"};
 const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem",
-                           "constraint"};
+                           "constraint", "sample_list_slack"};
 const KeyList kContactSolvers{"penalty", "constraint"};
 const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
                               "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle"};
@@ -642,6 +642,9 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.contact.levelSetCellsPerDn =
       c.number("level_set_cells_per_dn", {"cells per Dn", kPositive, "24"}, scene.contact.levelSetCellsPerDn);
   scene.contact.maxOverlap = c.number("max_overlap", {"Dn", kFraction, "0.25"}, scene.contact.maxOverlap);
+  constexpr Range kSlack{0.0, 1.0, false, false};
+  scene.contact.sampleListSlack =
+      c.number("sample_list_slack", {"Dn", kSlack, "0.05; 0 = no near-sample lists"}, scene.contact.sampleListSlack);
   scene.contact.model = static_cast<ContactModel>(c.choice("model", kContactModels, 0));
   scene.contact.solver = static_cast<ContactSolver>(c.choice("solver", kContactSolvers, 0));
   readConstraintSettings(c, scene);

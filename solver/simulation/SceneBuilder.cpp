@@ -157,6 +157,7 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.levelSet.cellsPerDn = scene.contact.levelSetCellsPerDn;
   w.samples.spacingOverDn = scene.contact.sampleSpacing;
   w.maxOverlapPerDn = scene.contact.maxOverlap;
+  w.sampleListSlackPerDn = scene.contact.sampleListSlack;
   w.contactModel = scene.contact.model == io::ContactModel::Fdem ? ContactModel::Fdem : ContactModel::LevelSet;
   w.fdem.elementsPerUnit = scene.contact.fdemElementsPerUnit;
   w.solver = scene.contact.solver == io::ContactSolver::Constraint ? ContactSolverKind::Constraint

@@ -34,6 +34,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace armour::simulation {
@@ -130,6 +131,10 @@ struct WorldSettings {
   ConstraintSettings constraint;          ///< contact.constraint (solver = Constraint only)
   contact::FdemMeshSettings fdem;         ///< contact elements per shape (fdem only)
   double boxMarginPerDn = 0.05;           ///< world boxes grow by this x Dn (unit: -)
+  /// Near-sample lists of body pairs (NarrowPhase.hpp): a full search lists the samples within the
+  /// margin plus this x the smaller Dn, and the pair tests only those until it has moved about a
+  /// third of it. Exact (the same points bit for bit); a speed setting only. 0: no lists (unit: -).
+  double sampleListSlackPerDn = 0.05;
   double maxOverlapPerDn = 0.25;          ///< guard rail: deeper overlaps stop the run (unit: -)
   /// Guard rail against tunnelling: an overlap deeper than this fraction of the thinner part's
   /// inner depth (the depth of its deepest interior point: half the thickness of a slab) stops
@@ -215,6 +220,8 @@ struct StepStatistics {
   std::size_t warmStarted = 0;      ///< constraint solver: reduced points that found their impulses of the last step
   std::size_t contactPoints = 0;    ///< engaged sample points (fdem: element-pair and face records)
   std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
+  std::size_t sampleSearches = 0;   ///< body-pair directions searched in full (near-sample lists made)
+  std::size_t sampleListReuses = 0; ///< body-pair directions served from their near-sample list
   double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
 };
 
@@ -392,6 +399,22 @@ private:
   /// Friction history per body pair (or body-plane / body-convex pair: second = flag bit | index), per
   /// sample key (direction bit | sample index), sorted by key.
   PairHistories history_; ///< sorted by pair
+  /// Near-sample lists per body-body pair (key: first << 32 | second), kept while the pair stays a
+  /// candidate; derived state (exact), so a restart simply makes them anew.
+  struct CachedSamples {
+    contact::PairSampleCache cache;
+    std::uint64_t step = 0; ///< last step the pair was a candidate
+  };
+  std::unordered_map<std::uint64_t, CachedSamples> sampleLists_;
+  std::vector<contact::PairSampleCache*> stepLists_; ///< this step's, per candidate pair (constraint solver)
+  /// The near-sample list of each candidate pair (nullptr for static geometry, or lists off); drops
+  /// the lists of pairs no longer candidates. Serial (WorldContacts.cpp).
+  std::vector<contact::PairSampleCache*> sampleListsFor(const std::vector<contact::BodyPair>& keys);
+  [[nodiscard]] double sampleListSlack(BodyId a, BodyId b) const {
+    return settings_.sampleListSlackPerDn * std::min(bodyDn(a), bodyDn(b));
+  }
+  /// Adds the lists' searches and reuses of this step to stats_.
+  void countSampleLists(const std::vector<contact::PairSampleCache*>& lists);
   [[nodiscard]] const History* findPairHistory(const contact::BodyPair& key) const; // WorldContacts.cpp
   mutable double cachedStep_ = -1.0;
   double time_ = 0.0;

@@ -72,6 +72,7 @@ const contact::PointHistory* nearestPreviousPoint(const contact::BodyPair& key, 
 void World::collideConstraint(std::vector<PairManifold>& manifolds) {
   std::vector<contact::BodyPair> keys;
   candidatePairs(keys);
+  stepLists_ = sampleListsFor(keys);
   manifolds.assign(keys.size(), PairManifold{});
   const ConstraintSettings& cs = settings_.constraint;
   contact::ReductionSettings reduction;
@@ -109,7 +110,7 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
       const BodyId b = m.key.second;
       const double margin = std::max(cs.speculativeMargin * std::min(bodyDn(a), bodyDn(b)), travel(a, b));
       m.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b),
-                                                 margin, points);
+                                                 margin, points, stepLists_[w], sampleListSlack(a, b));
     }
     // The keys this pair's patches held in the previous step (its history, sorted by key).
     std::vector<std::uint32_t> kept;
@@ -233,6 +234,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
   const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
   stats_ = {};
   stats_.candidatePairs = manifolds.size();
+  countSampleLists(stepLists_);
   contactEnergy_ = 0.0; // the soft constraints' elastic energy is not tracked (docs/theory.md)
   patches_.clear();
   contactCount_.assign(nBodies, 0);

@@ -254,6 +254,37 @@ void World::candidatePairs(std::vector<contact::BodyPair>& out) {
   }
 }
 
+std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<contact::BodyPair>& keys) {
+  std::vector<contact::PairSampleCache*> lists(keys.size(), nullptr);
+  if (settings_.sampleListSlackPerDn <= 0.0 || settings_.contactModel != ContactModel::LevelSet) {
+    sampleLists_.clear();
+    return lists;
+  }
+  const std::uint64_t step = steps_ + 1; // never 0, the stamp of a new entry
+  for (std::size_t w = 0; w < keys.size(); ++w) {
+    if ((keys[w].second & kStaticBits) != 0) continue;
+    const std::uint64_t id = (std::uint64_t{keys[w].first} << 32) | keys[w].second;
+    CachedSamples& entry = sampleLists_[id];
+    entry.step = step;
+    entry.cache.searches = 0;
+    entry.cache.reuses = 0;
+    lists[w] = &entry.cache;
+  }
+  if (sampleLists_.size() > lists.size()) {
+    std::erase_if(sampleLists_, [step](const auto& item) { return item.second.step != step; });
+  }
+  return lists;
+}
+
+void World::countSampleLists(const std::vector<contact::PairSampleCache*>& lists) {
+  for (const contact::PairSampleCache* list : lists) {
+    if (list != nullptr) {
+      stats_.sampleSearches += list->searches;
+      stats_.sampleListReuses += list->reuses;
+    }
+  }
+}
+
 void World::computeForces(double dt, double stateTime) {
   auto clock = StepProfile::Clock::now();
   bodies_.clearForces();
@@ -261,6 +292,7 @@ void World::computeForces(double dt, double stateTime) {
   clock = profile_.add(Stage::Boxes, clock);
   std::vector<contact::BodyPair> keys;
   candidatePairs(keys);
+  const std::vector<contact::PairSampleCache*> lists = sampleListsFor(keys);
   clock = profile_.add(Stage::BroadPhase, clock);
   const auto nBodies = static_cast<std::uint32_t>(bodies_.size());
   std::vector<PairWork> work(keys.size());
@@ -296,7 +328,7 @@ void World::computeForces(double dt, double stateTime) {
       lengthScale = std::min(lengthScale, bodyDn(b));
       inverseMassSum += bodies_.inverseMass(b);
       pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
-                                                  engaged);
+                                                  engaged, lists[w], sampleListSlack(a, b));
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
     }
     if (engaged.empty()) {
@@ -349,6 +381,7 @@ void World::computeForces(double dt, double stateTime) {
   // Serial, ordered accumulation: bit-identical for any thread count.
   stats_ = {};
   stats_.candidatePairs = work.size();
+  countSampleLists(lists);
   contactEnergy_ = 0.0;
   patches_.clear();
   contactCount_.assign(nBodies, 0);

@@ -128,6 +128,7 @@ CaseResult runLayer(const LayerOptions& o) {
   r.buildBodies = wallNow() - t0;
   r.memBodies = memoryNow();
   r.dt = world.timeStep();
+  r.sampleListSlack = world.settings().sampleListSlackPerDn;
   r.landing = std::sqrt(2.0 * clearance / kGravity);
   const int settleThreads = *std::max_element(o.threads.begin(), o.threads.end());
   fmt::print(stderr, "armour layer: {} units placed in {:.1f} s on {} rocks, dt = {:.3g} s, settling {:.2f} s on {} "

@@ -37,6 +37,8 @@ Window runWindow(World& world, int threads, std::uint64_t steps, double untilTim
     w.awakeSum += static_cast<double>(s.awakeBodies);
     w.pairSum += static_cast<double>(s.candidatePairs);
     w.pointSum += static_cast<double>(s.contactPoints);
+    w.listReuseSum += static_cast<double>(s.sampleListReuses);
+    w.listSearchSum += static_cast<double>(s.sampleSearches);
     w.maxOverlap = std::max(w.maxOverlap, s.maxOverlap);
   }
   w.wall = wallNow() - wall0;

@@ -36,6 +36,8 @@ struct Window {
   double awakeSum = 0.0;   ///< sum over steps of awake dynamic bodies
   double pairSum = 0.0;    ///< sum over steps of candidate pairs (bodies, planes)
   double pointSum = 0.0;   ///< sum over steps of engaged contact points
+  double listReuseSum = 0.0;  ///< sum over steps of body-pair directions served by near-sample lists
+  double listSearchSum = 0.0; ///< sum over steps of body-pair directions searched in full for a list
   double maxOverlap = 0.0; ///< m
   WorldState end;
 
@@ -89,6 +91,7 @@ struct CaseResult {
   std::size_t dynamic = 0;
   std::size_t fixed = 0;
   double dt = 0.0;
+  double sampleListSlack = 0.0; ///< WorldSettings::sampleListSlackPerDn of the run
   double buildShapes = 0.0, buildBodies = 0.0; ///< wall (s), bodies including their placement
   double placement = 0.0; ///< wall spent placing the units (s)
   Window settle;

@@ -112,6 +112,7 @@ CaseResult runPile(const PileOptions& o) {
   r.memBodies = memoryNow();
   r.dynamic = static_cast<std::size_t>(o.count);
   r.dt = world.timeStep();
+  r.sampleListSlack = world.settings().sampleListSlackPerDn;
   // Drop: the top layer's free fall to the floor (the last unit cannot have landed before).
   // Deposit: the fall through the clearance.
   r.landing = drop ? std::sqrt(2.0 * (top - radius) / kGravity) : std::sqrt(2.0 * clearance / kGravity);

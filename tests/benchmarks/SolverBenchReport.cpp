@@ -281,6 +281,11 @@ void printLayerTable(const LayerOptions& o, const CaseResult& r) {
       si(r.buildShapes + r.buildBodies), group(static_cast<double>(r.settle.steps)), si(r.settle.wall),
       si((r.memRunning.heap - r.memShapes.heap) / 1024.0 / n), si(peakResidentBytes() / kMiB),
       r.deterministic ? "yes" : "NO", r.load);
+  const double directions = w.listReuseSum + w.listSearchSum;
+  fmt::print("\nNear-sample lists (slack {} Dn): {:.1f} % of the body-pair directions past the pair cull were "
+             "served from their list, {:.0f} full searches per step.\n",
+             r.sampleListSlack, directions > 0.0 ? 100.0 * w.listReuseSum / directions : 0.0,
+             w.perStep(w.listSearchSum));
   fmt::print("\n- {}:{}\n\nSolidity_R's 7.7 counts its 3436 rocks as bodies (3678 x 3600 s / (24 h x 20 threads)); "
              "here the rocks are fixed and cost only through their pairs with units, so the fair per-body "
              "comparison is the unit column against {:.2f}, and the plainest one is core-seconds per simulated "

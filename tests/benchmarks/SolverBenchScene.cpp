@@ -46,14 +46,17 @@ double drawScale(const std::string& kind, double dn, std::mt19937_64& rng) {
 
 namespace {
 armour::simulation::ContactSolverKind benchSolver = armour::simulation::ContactSolverKind::Penalty;
+double benchSampleListSlack = WorldSettings{}.sampleListSlackPerDn;
 } // namespace
 
 void setBenchSolver(armour::simulation::ContactSolverKind solver) { benchSolver = solver; }
+void setBenchSampleListSlack(double perDn) { benchSampleListSlack = perDn; }
 
 WorldSettings baseSettings(bool sleep) {
   WorldSettings s;
   s.sleep.enabled = sleep;
   s.solver = benchSolver;
+  s.sampleListSlackPerDn = benchSampleListSlack;
   return s;
 }
 

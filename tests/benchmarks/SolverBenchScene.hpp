@@ -49,6 +49,8 @@ constexpr double kMaxScaleOverDn = 1.0913; // cbrt(1.3)
 WorldSettings baseSettings(bool sleep);
 /// The contact solver of every World the benchmark builds (bench_solver --solver).
 void setBenchSolver(armour::simulation::ContactSolverKind solver);
+/// The near-sample list slack of every World (WorldSettings::sampleListSlackPerDn; 0 = no lists).
+void setBenchSampleListSlack(double perDn);
 
 /// Concrete, 2400 kg/m^3, with the given friction (static = dynamic) and restitution.
 MaterialId addConcrete(World& world, double friction, double restitution);

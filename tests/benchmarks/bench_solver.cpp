@@ -225,6 +225,9 @@ int main(int argc, char** argv) {
   std::string solver = "penalty";
   app.add_option("--solver", solver, "contact solver of every case: penalty or constraint (contact.solver)")
       ->check(CLI::IsMember({"penalty", "constraint"}));
+  double sampleSlack = armour::simulation::WorldSettings{}.sampleListSlackPerDn;
+  app.add_option("--sample-slack", sampleSlack,
+                 "near-sample list slack per Dn (WorldSettings::sampleListSlackPerDn; 0 = no lists)");
 
   PileOptions pile;
   auto* pileCmd = app.add_subcommand("pile", "N units dropped into a walled box; time K steps after landing");
@@ -305,7 +308,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   armour::bench::setBenchSolver(solver == "constraint" ? armour::simulation::ContactSolverKind::Constraint
                                                        : armour::simulation::ContactSolverKind::Penalty);
-  std::printf("contact solver: %s\n", solver.c_str());
+  armour::bench::setBenchSampleListSlack(sampleSlack);
+  std::printf("contact solver: %s, near-sample slack %g Dn\n", solver.c_str(), sampleSlack);
 
   try {
     if (modelsCmd->parsed()) {

@@ -116,4 +116,15 @@ msg=$("$armour" place "$out/dolos.yaml" --output "$out/a-folder" 2>&1); code=$?
 set -e
 [[ $code -eq 2 ]] || fail "--output naming a folder: exit $code"
 grep -q "a-folder is a folder; give the path of the placed scene file" <<< "$msg" || fail "unclear message: $msg"
+# --output in a folder that does not exist yet: made at the start (it was found missing only when
+# the placed scene was written, after the whole placement); one that cannot be made is refused at
+# once, naming --output.
+"$armour" --log-level warn place "$out/dolos.yaml" --threads 1 --output "$out/new/deeper/placed.yaml" > "$out/place-new.txt" \
+  || fail "place into a new folder failed: $(cat "$out/place-new.txt")"
+[[ -f "$out/new/deeper/placed.yaml" ]] || fail "no placed scene in the new folder"
+set +e
+msg=$("$armour" place "$out/dolos.yaml" --output "$out/dolos.yaml/inside/placed.yaml" 2>&1); code=$?
+set -e
+[[ $code -eq 2 ]] || fail "--output under a file: exit $code"
+grep -q -- "--output: cannot create the folder" <<< "$msg" || fail "unclear message: $msg"
 echo "place_cli: OK"

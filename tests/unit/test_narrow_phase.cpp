@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The narrow phase's near-sample lists (contact/NarrowPhase.hpp): a pair that reuses its list finds
+// the same contact points, bit for bit, as a full search, over a walk of poses that keeps the pair
+// in contact, crosses the list's slack many times, changes the margin and the scale.
+
+#include "contact/NarrowPhase.hpp"
+#include "support/ShapeCache.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+namespace {
+
+using armour::contact::ContactPoint;
+using armour::contact::ContactPose;
+using armour::contact::ContactShape;
+using armour::contact::LevelSet;
+using armour::contact::PairSampleCache;
+using armour::contact::SampleBuckets;
+using armour::contact::SurfaceSamples;
+using armour::geometry::Vec3;
+using Quat = Eigen::Quaterniond;
+
+struct Shape {
+  std::unique_ptr<LevelSet> levelSet;
+  std::unique_ptr<SurfaceSamples> samples;
+  SampleBuckets buckets;
+  ContactShape view;
+};
+
+Shape makeShape(const std::string& name) {
+  const auto& mesh = armour::test::unitShape(name);
+  Shape s;
+  s.levelSet = std::make_unique<LevelSet>(mesh);
+  s.samples = std::make_unique<SurfaceSamples>(mesh);
+  s.buckets = armour::contact::buildBuckets(*s.samples, mesh.bounds());
+  double radius = 0.0;
+  for (const Vec3& v : mesh.vertices) radius = std::max(radius, v.norm());
+  s.view = {s.levelSet.get(), s.samples.get(), &s.buckets, radius};
+  return s;
+}
+
+ContactPose pose(const Vec3& x, const Quat& q, double scale) {
+  ContactPose p;
+  p.position = x;
+  p.orientation = q.normalized();
+  p.rotation = p.orientation.toRotationMatrix();
+  p.scale = scale;
+  p.dn = scale; // the unit shapes have Dn = 1 m
+  return p;
+}
+
+void expectSamePoints(const std::vector<ContactPoint>& full, const std::vector<ContactPoint>& listed, int step) {
+  ASSERT_EQ(full.size(), listed.size()) << "step " << step;
+  for (std::size_t k = 0; k < full.size(); ++k) {
+    ASSERT_EQ(full[k].key, listed[k].key) << "step " << step << " point " << k;
+    ASSERT_EQ(full[k].point, listed[k].point) << "step " << step;
+    ASSERT_EQ(full[k].normal, listed[k].normal) << "step " << step;
+    ASSERT_EQ(full[k].depth, listed[k].depth) << "step " << step;
+    ASSERT_EQ(full[k].area, listed[k].area) << "step " << step;
+  }
+}
+
+// A Core-Loc wanders against another (and a cube against a Core-Loc) by steps of up to 0.02 Dn and
+// 1 degree, pulled back towards contact; the margin switches between 0 (penalty) and 0.05 Dn.
+void walk(const std::string& nameA, const std::string& nameB, double scaleB) {
+  const Shape A = makeShape(nameA);
+  const Shape B = makeShape(nameB);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const ContactPose pa = pose(Vec3::Zero(), Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized())), 1.0);
+  Vec3 xb(0.9, 0.1, 0.2);
+  Quat qb(Eigen::AngleAxisd(1.1, Vec3(-1, 0.5, 2).normalized()));
+  PairSampleCache cache;
+  std::size_t points = 0;
+  for (int step = 0; step < 600; ++step) {
+    const Vec3 pull = -0.004 * (xb.norm() - 0.8) * xb.normalized();
+    xb += 0.02 * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0) * (step % 50 < 40 ? 0.1 : 1.0) + pull;
+    qb = Quat(Eigen::AngleAxisd(0.0175 * u(rng) * (step % 50 < 40 ? 0.1 : 1.0), Vec3(u(rng), u(rng), u(rng)).normalized())) * qb;
+    const ContactPose pb = pose(xb, qb, scaleB);
+    const double margin = step % 7 < 4 ? 0.0 : 0.05;
+    std::vector<ContactPoint> full, listed;
+    const double deepFull = armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, margin, full);
+    const double deepListed =
+        armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, margin, listed, &cache, 0.05);
+    ASSERT_EQ(deepFull, deepListed) << "step " << step;
+    expectSamePoints(full, listed, step);
+    points += full.size();
+  }
+  // The walk touched (else it proves nothing), and the lists both served and were made anew.
+  EXPECT_GT(points, 600u);
+  EXPECT_GT(cache.reuses, 200u);
+  EXPECT_GT(cache.searches, 20u);
+}
+
+TEST(NearSampleLists, CoreLocOnCoreLocFindsTheFullSearchsPointsBitForBit) { walk("coreloc", "coreloc", 1.0); }
+
+TEST(NearSampleLists, CubeOnCoreLocOfAnotherScaleFindsTheFullSearchsPointsBitForBit) { walk("coreloc", "cube", 0.7); }
+
+TEST(NearSampleLists, AListMadeForOtherShapesIsNotUsed) {
+  const Shape A = makeShape("coreloc");
+  const Shape B = makeShape("cube");
+  const Shape C = makeShape("tetrapod");
+  const ContactPose pa = pose(Vec3::Zero(), Quat::Identity(), 1.0);
+  const ContactPose pb = pose(Vec3(0.8, 0.0, 0.0), Quat::Identity(), 1.0);
+  PairSampleCache cache;
+  std::vector<ContactPoint> first, second, full;
+  armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, 0.0, first, &cache, 0.05);
+  ASSERT_EQ(cache.searches, 2u);
+  // Same poses, the second body now another shape: the lists must be made anew, not reused.
+  armour::contact::samplesInLevelSets(A.view, pa, C.view, pb, 0.0, second, &cache, 0.05);
+  armour::contact::samplesInLevelSets(A.view, pa, C.view, pb, 0.0, full);
+  EXPECT_EQ(cache.searches, 4u);
+  EXPECT_EQ(cache.reuses, 0u);
+  expectSamePoints(full, second, 0);
+}
+
+} // namespace
