@@ -5,6 +5,7 @@
 
 #include "addToRunTimeSelectionTable.H"
 #include "fvCFD.H"
+#include "mapPolyMesh.H"
 #include "OFstream.H"
 #include "uniformDimensionedFields.H"
 #include "wordRes.H"
@@ -66,7 +67,8 @@ Foam::functionObjects::armourSampler::armourSampler
     finished_(false),
     records_(0),
     seconds_(0.0),
-    created_(std::chrono::steady_clock::now())
+    created_(std::chrono::steady_clock::now()),
+    nCells_(0)
 {
     read(dict);
 }
@@ -136,6 +138,21 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     provenance_.software = "armour foam-bridge armourSampler function object";
     provenance_.command = "interFoam with functions { " + name() + " { type armourSampler; } }";
 
+    if (mesh_.dynamic())
+    {
+        // The faces, their voxels and the samples per voxel m are found once and m is written in
+        // the storm file's header: a mesh that changes its topology (dynamicRefineFvMesh) or moves
+        // (dynamicMotionSolverFvMesh) would invalidate all three. Refused before the first sample.
+        FatalIOErrorInFunction(dict)
+            << "armourSampler " << name() << ": the mesh is a " << meshType()
+            << " (constant/dynamicMeshDict: dynamicFvMesh " << meshType() << "), a mesh that "
+            << "changes during the run; armourSampler samples static meshes only (the unit faces, "
+            << "their voxels and the samples per voxel of the storm file are fixed). Set "
+            << "`dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict and refine the free-surface "
+            << "band and the units beforehand (refineMesh, snappyHexMesh refinement regions)"
+            << exit(FatalIOError);
+    }
+
     if (!twoD_)
     {
         const wordRes names(dict.get<wordRes>("patches"));
@@ -166,6 +183,7 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
 void Foam::functionObjects::armourSampler::setGeometry()
 {
     const armour::bridge::VoxelGrid& grid = stats_->grid();
+    nCells_ = mesh_.nCells();
     std::vector<double> x, y, z;
     if (twoD_)
     {
@@ -264,6 +282,7 @@ void Foam::functionObjects::armourSampler::collect
     const volScalarField& p = mesh_.lookupObject<volScalarField>(pName_);
     const volVectorField& U = mesh_.lookupObject<volVectorField>(UName_);
     const volScalarField& alpha = mesh_.lookupObject<volScalarField>(alphaName_);
+    checkMeshUnchanged();
     values.resize(stats_->samplePoints());
     force = Zero;
     std::size_t k = 0;
@@ -301,6 +320,52 @@ void Foam::functionObjects::armourSampler::collect
             ++k;
         }
     }
+}
+
+
+const Foam::word& Foam::functionObjects::armourSampler::meshType() const
+{
+    // fvMesh is a polyMesh and an lduMesh, both with a type(): the polyMesh's is the run-time
+    // selected mesh class (staticFvMesh, dynamicRefineFvMesh, ...).
+    return static_cast<const polyMesh&>(mesh_).type();
+}
+
+
+void Foam::functionObjects::armourSampler::checkMeshUnchanged() const
+{
+    // Never index past the arrays sized by setGeometry(): a mesh whose cells or unit faces changed
+    // since (a mesh type that does not say it is dynamic, a topology change we were not told of)
+    // stops the run here, naming what changed.
+    label faces = 0;
+    forAll(patchIDs_, i) faces += mesh_.boundary()[patchIDs_[i]].size();
+    const label expected = twoD_ ? label(0) : label(stats_->samplePoints());
+    if (mesh_.nCells() != nCells_ || faces != expected)
+    {
+        FatalErrorInFunction
+            << "armourSampler " << name() << ": the " << meshType() << " mesh changed since the "
+            << "sampler was set up (" << nCells_ << " -> " << mesh_.nCells() << " cells, " << expected
+            << " -> " << faces << " unit faces on this rank); armourSampler samples static meshes only: "
+            << "set `dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict" << exit(FatalError);
+    }
+}
+
+
+void Foam::functionObjects::armourSampler::updateMesh(const mapPolyMesh&)
+{
+    checkMeshUnchanged();
+    FatalErrorInFunction
+        << "armourSampler " << name() << ": the " << meshType() << " mesh changed its topology; "
+        << "armourSampler samples static meshes only: set `dynamicFvMesh staticFvMesh;` in "
+        << "constant/dynamicMeshDict" << exit(FatalError);
+}
+
+
+void Foam::functionObjects::armourSampler::movePoints(const polyMesh&)
+{
+    FatalErrorInFunction
+        << "armourSampler " << name() << ": the " << meshType() << " mesh moved; armourSampler "
+        << "samples static meshes only (the unit faces are binned into voxels once): set "
+        << "`dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict" << exit(FatalError);
 }
 
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "proxy/ProxyRun.hpp"
 
+#include "proxy/CaseChecks.hpp"
 #include "proxy/SurfaceSeries.hpp"
 
 #include "core/Error.hpp"
@@ -47,6 +48,8 @@ void requireSameFaces(const Surface& a, const Surface& b) {
 
 SampleSummary sampleSurfaces(const SampleOptions& o) {
   auto log = core::logger("foam-proxy");
+  // The armourSampler's refusal (issue 23): a changing mesh.
+  requireStaticMesh(o.caseDir);
   const fs::path setsFolder = o.caseDir / "postProcessing" / o.setsFunction;
   const fs::path surfacesFolder = o.caseDir / "postProcessing" / o.surfacesFunction;
   std::vector<SampleTime> times = listSampleTimes(setsFolder);

@@ -7,6 +7,7 @@
 //   foam-proxy fit     deviations.txt                              Weibull MLE of a column of numbers
 
 #include "bridge/WeibullMle.hpp"
+#include "proxy/CaseChecks.hpp"
 #include "proxy/ProxyRun.hpp"
 
 #include "core/BuildInfo.hpp"
@@ -103,13 +104,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> patches{"unit.*"};
   double interval = 0.05;
   std::string samplerLibrary = "libarmourSampler.so";
-  std::string dictOutput, which = "both";
+  std::string dictOutput, dictCase, which = "both";
   CLI::App* dict = app.add_subcommand("dict", "write the function-object dictionaries (armourSampler, surfaces, sets)");
   addSettings(dict);
   dict->add_option("--patches", patches, "armour-unit patch names or regular expressions")->capture_default_str();
   dict->add_option("--interval", interval, "sampling interval (s)")->capture_default_str();
   dict->add_option("--sampler-library", samplerLibrary, "libs entry of armourSampler")->capture_default_str();
   dict->add_option("-o,--output", dictOutput, "file to write (default: standard output)");
+  dict->add_option("--case", dictCase, "the case the dictionaries are for: its constant/g and constant/dynamicMeshDict "
+                   "are checked (default: the folder above system/ when -o is CASE/system/FILE)");
   dict->add_option("--function-objects", which, "both, sampler (armourSampler) or stock (surfaces and sets)")->capture_default_str();
   dict->add_option("--surface-format", so.surfaceFormat, "surfaces output: raw (text, double precision) or vtk "
                    "(binary, float; face areas for sample --forces-csv)")->capture_default_str();
@@ -175,9 +178,31 @@ int main(int argc, char** argv) {
         }
       }
     } else if (*dict) {
+      // The case's refusals first (issue 23): nothing is written for a case the function objects cannot sample.
+      std::filesystem::path caseDir = dictCase;
+      if (caseDir.empty() && !dictOutput.empty()) {
+        const std::filesystem::path system = std::filesystem::absolute(dictOutput).parent_path();
+        if (system.filename() == "system") caseDir = system.parent_path();
+      }
+      if (!caseDir.empty()) {
+        proxy::requireStaticMesh(caseDir);
+      }
       const std::string text = proxy::functionDictionaries(so, patches, interval, samplerLibrary, which);
-      if (dictOutput.empty()) std::fputs(text.c_str(), stdout);
-      else std::ofstream(dictOutput) << text;
+      if (dictOutput.empty()) {
+        std::fputs(text.c_str(), stdout);
+      } else {
+        // Written whole or not at all: a temporary file next to it, renamed into place.
+        const std::string partial = dictOutput + ".partial";
+        {
+          std::ofstream out(partial);
+          out << text;
+          out.close();
+          if (!out) core::failInput(partial, "cannot write the file; check the folder exists and is writable");
+        }
+        std::error_code ec;
+        std::filesystem::rename(partial, dictOutput, ec);
+        if (ec) core::failInput(dictOutput, "cannot move '{}' into place ({})", partial, ec.message());
+      }
     } else if (*combine) {
       storm::StormWriteOptions write;
       proxy::combineStorms(seaState, variabilityFrom, combined, provenance(command, title, ""), write);

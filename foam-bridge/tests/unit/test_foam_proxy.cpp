@@ -3,6 +3,7 @@
 // file of a 2D run declared uniform along y (proxy/ProxyRun sampleSurfaces, functionDictionaries) and
 // the comparison used by the alpha/beta calibration (proxy/ProxyRun compareStorms).
 
+#include "proxy/CaseChecks.hpp"
 #include "proxy/ProxyRun.hpp"
 #include "proxy/SurfaceSeries.hpp"
 
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -288,4 +290,37 @@ TEST(CombineStorms, TakesRecordsFromOneAndVariabilityFromTheOther) {
                                     storm::StormWriteOptions()),
                core::InputError);
   fs::remove_all(d);
+}
+
+// ---- the cases foam-proxy refuses, as the armourSampler does (issue 23 items 1 and 4) ----------
+
+namespace {
+
+std::string inputError(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST(CaseChecks, DynamicMeshIsRefusedNamingTheMeshTypeAndTheFix) {
+  const fs::path d = tempDir("dynamic");
+  fs::create_directories(d / "constant");
+  EXPECT_EQ(proxy::dynamicMeshType(d), "staticFvMesh"); // no dynamicMeshDict: OpenFOAM builds a static mesh
+  EXPECT_NO_THROW(proxy::requireStaticMesh(d));
+  std::ofstream(d / "constant/dynamicMeshDict") << "FoamFile { version 2.0; format ascii; class dictionary; object "
+                                                   "dynamicMeshDict; }\n// dynamicFvMesh staticFvMesh;\n"
+                                                   "dynamicFvMesh   dynamicRefineFvMesh;\n"
+                                                   "dynamicRefineFvMeshCoeffs { refineInterval 1; field alpha.water; }\n";
+  EXPECT_EQ(proxy::dynamicMeshType(d), "dynamicRefineFvMesh"); // the commented-out line is not read
+  const std::string error = inputError([&] { proxy::requireStaticMesh(d); });
+  EXPECT_NE(error.find("constant/dynamicMeshDict"), std::string::npos) << error;
+  EXPECT_NE(error.find("dynamicFvMesh = dynamicRefineFvMesh"), std::string::npos) << error;
+  EXPECT_NE(error.find("`dynamicFvMesh staticFvMesh;`"), std::string::npos) << error;
+  std::ofstream(d / "constant/dynamicMeshDict") << "dynamicFvMesh staticFvMesh;\n";
+  EXPECT_NO_THROW(proxy::requireStaticMesh(d));
 }
