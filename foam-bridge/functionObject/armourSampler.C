@@ -137,6 +137,7 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     provenance_.openfoamVersion = "v1912";
     provenance_.software = "armour foam-bridge armourSampler function object";
     provenance_.command = "interFoam with functions { " + name() + " { type armourSampler; } }";
+    writeOptions_.syncEachRecord = true;  // a killed run keeps every record in storm.nc.partial
 
     if (mesh_.dynamic())
     {

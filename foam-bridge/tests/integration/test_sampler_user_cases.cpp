@@ -146,4 +146,51 @@ TEST_F(SamplerUserCases, StaticRunUnderAddressSanitizerWritesAValidStormFile) {
   EXPECT_EQ(reader.times().size(), 4u);
 }
 
+TEST_F(SamplerUserCases, KilledRunKeepsEveryRecordInThePartialFile) {
+  const fs::path dir = caseWith("killed", ARMOUR_SAMPLER_LIB);
+  replaceInFile(dir / "system/controlDict", "endTime +0.2;", "endTime 20;");
+  const fs::path logFile = dir / "log.interFoam";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (chdir(dir.c_str()) != 0) _exit(127);
+    const int fd = open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 1);
+    execlp("interFoam", "interFoam", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill (SIGKILL: no handler, no destructor runs) once a time step after 0.2 s has started: the
+  // samples at 0.05, 0.1, 0.15 and 0.2 s were appended at the end of their steps.
+  const std::regex timeLine(R"(\nTime = ([0-9.eE+-]+)\n)");
+  bool killed = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (!killed && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const std::string log = slurp(logFile);
+    double last = -1.0;
+    for (std::sregex_iterator it(log.begin(), log.end(), timeLine), end; it != end; ++it) last = std::stod((*it)[1]);
+    if (last > 0.2 + 1e-9) {
+      kill(pid, SIGKILL);
+      killed = true;
+    }
+    int status = 0;
+    if (!killed && waitpid(pid, &status, WNOHANG) == pid) break; // ended on its own: a failure below
+  }
+  if (!killed) kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(killed) << "interFoam ended or did not pass t = 0.2 s; see " << logFile;
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  const fs::path partial = dir / "postProcessing/armourSampler/storm.nc.partial";
+  ASSERT_TRUE(fs::exists(partial));
+  EXPECT_FALSE(fs::exists(dir / "postProcessing/armourSampler/storm.nc")); // not finished: no complete-looking file
+  const StormReader reader(partial.string());
+  EXPECT_NO_THROW(reader.validateAllRecords());
+  ASSERT_GE(reader.times().size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(reader.times()[k], 0.05 * double(k + 1), 1e-9) << k;
+  std::printf("killed after t = 0.2 s: %zu records in %s\n", reader.times().size(), partial.c_str());
+}
+
 } // namespace
