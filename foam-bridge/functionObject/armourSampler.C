@@ -4,6 +4,7 @@
 #include "armourSampler.H"
 
 #include "addToRunTimeSelectionTable.H"
+#include "foamVersion.H"
 #include "fvCFD.H"
 #include "mapPolyMesh.H"
 #include "OFstream.H"
@@ -12,7 +13,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
+
+// armour's version (solver/core/BuildInfo.hpp, which is C++17: declared here in C++11 form).
+namespace armour { namespace core { std::string version(); } }
 
 namespace Foam
 {
@@ -50,6 +56,17 @@ void maxAll(std::vector<double>& v)
     {
         v[i] = l[Foam::label(i)] <= -Foam::GREAT ? -std::numeric_limits<double>::infinity() : l[Foam::label(i)];
     }
+}
+
+// The solver's command line (e.g. "interFoam -parallel"), for the storm file's history: the
+// function object has no argList. Linux: /proc/self/cmdline, arguments separated by NULs.
+std::string solverCommandLine()
+{
+    std::ifstream in("/proc/self/cmdline", std::ios::binary);
+    std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    while (!s.empty() && s.back() == '\0') s.pop_back();
+    for (char& c : s) if (c == '\0') c = ' ';
+    return s;
 }
 
 } // namespace
@@ -133,10 +150,19 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     writeOptions_.deflateLevel = dict.lookupOrDefault<label>("deflate", 1);
     provenance_.title = dict.lookupOrDefault<string>("title", "");
     provenance_.comment = dict.lookupOrDefault<string>("comment", "");
-    provenance_.sourceCase = mesh_.time().globalPath();
-    provenance_.openfoamVersion = "v1912";
-    provenance_.software = "armour foam-bridge armourSampler function object";
-    provenance_.command = "interFoam with functions { " + name() + " { type armourSampler; } }";
+    // The same provenance as foam-proxy's (docs/storm-file.md): the case, the OpenFOAM version
+    // of the running solver, armour's version and the command (the solver's command line).
+    fileName caseDir(mesh_.time().globalPath());
+    caseDir.clean();
+    provenance_.sourceCase = caseDir;
+    // The running library's api (Debian's build leaves foamVersion::version empty): "v1912", as
+    // foam-proxy writes it.
+    provenance_.openfoamVersion =
+        foamVersion::version.empty() ? "v" + std::to_string(foamVersion::api) : foamVersion::version;
+    provenance_.software = "armour foam-bridge armourSampler " + armour::core::version();
+    const std::string solver = solverCommandLine();
+    provenance_.command = (solver.empty() ? std::string(mesh_.time().controlDict().lookupOrDefault<word>("application", "OpenFOAM solver")) : solver)
+        + " (function object " + name() + ", type armourSampler)";
     writeOptions_.syncEachRecord = true;  // a killed run keeps every record in storm.nc.partial
 
     if (mesh_.dynamic())
@@ -429,10 +455,9 @@ bool Foam::functionObjects::armourSampler::execute()
             if (!writer_)
             {
                 mkDir(file_.path());
-                writer_.reset
-                (
-                    new armour::storm::StormWriter(file_, stats_->header(!twoD_), writeOptions_)
-                );
+                armour::storm::StormHeader header = stats_->header(!twoD_);
+                header.provenance = provenance_;
+                writer_.reset(new armour::storm::StormWriter(file_, header, writeOptions_));
             }
             stats_->observeEta(record.eta);
             writer_->append(record);

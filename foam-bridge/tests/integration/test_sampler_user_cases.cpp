@@ -144,6 +144,13 @@ TEST_F(SamplerUserCases, StaticRunUnderAddressSanitizerWritesAValidStormFile) {
   const StormReader reader((dir / "postProcessing/armourSampler/storm.nc").string());
   EXPECT_NO_THROW(reader.validateAllRecords());
   EXPECT_EQ(reader.times().size(), 4u);
+  // The provenance foam-proxy writes, filled by the function object too (issue 23 item 3).
+  const auto& p = reader.header().provenance;
+  EXPECT_EQ(fs::path(p.sourceCase), fs::canonical(dir)) << "source_case";
+  EXPECT_EQ(p.openfoamVersion, "v1912") << "openfoam_version";
+  EXPECT_NE(p.command.find("interFoam"), std::string::npos) << "history: " << p.command;
+  EXPECT_NE(p.command.find("armourSampler"), std::string::npos) << "history: " << p.command;
+  EXPECT_EQ(p.software.rfind("armour foam-bridge armourSampler ", 0), 0u) << "source: " << p.software;
 }
 
 TEST_F(SamplerUserCases, KilledRunKeepsEveryRecordInThePartialFile) {
