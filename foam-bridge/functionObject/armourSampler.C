@@ -122,7 +122,21 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     scalar magG = 9.81;
     if (mesh_.time().foundObject<uniformDimensionedVectorField>("g"))
     {
-        magG = mag(mesh_.time().lookupObject<uniformDimensionedVectorField>("g").value());
+        const vector g = mesh_.time().lookupObject<uniformDimensionedVectorField>("g").value();
+        magG = mag(g);
+        // The storm file's axes are fixed: z up (eta, the still water level, hydrostatics), x along
+        // the waves, y along the trunk. Only |g| is used, so a case with y up would be sampled into
+        // the wrong axes without a word. 1e-6 |g| of sideways gravity is round-off, not a tilt.
+        if (!(g.z() < 0 && mag(g.x()) <= 1e-6*magG && mag(g.y()) <= 1e-6*magG))
+        {
+            FatalIOErrorInFunction(dict)
+                << "armourSampler " << name() << ": constant/g: value = " << g
+                << ": gravity must point along -z (the storm file has z up, x along the waves and y "
+                << "along the trunk). Rotate the case so that z is up and the waves travel along x: "
+                << "transformPoints -rotate '(<up axis> (0 0 1))' -rotateFields (e.g. '((0 1 0) (0 0 1))' "
+                << "for a case with y up), then set g to (0 0 " << -magG << ") in constant/g"
+                << exit(FatalIOError);
+        }
     }
     s.gravity = dict.lookupOrDefault<scalar>("gravity", magG);
     s.wetAlpha = dict.lookupOrDefault<scalar>("wetAlpha", 0.5);

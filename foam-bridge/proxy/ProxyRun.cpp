@@ -48,8 +48,9 @@ void requireSameFaces(const Surface& a, const Surface& b) {
 
 SampleSummary sampleSurfaces(const SampleOptions& o) {
   auto log = core::logger("foam-proxy");
-  // The armourSampler's refusal (issue 23): a changing mesh.
+  // The armourSampler's refusals (issue 23): a changing mesh, gravity not along -z.
   requireStaticMesh(o.caseDir);
+  requireGravityAlongMinusZ(o.caseDir);
   const fs::path setsFolder = o.caseDir / "postProcessing" / o.setsFunction;
   const fs::path surfacesFolder = o.caseDir / "postProcessing" / o.surfacesFunction;
   std::vector<SampleTime> times = listSampleTimes(setsFolder);

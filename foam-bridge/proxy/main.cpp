@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
       }
       if (!caseDir.empty()) {
         proxy::requireStaticMesh(caseDir);
+        proxy::requireGravityAlongMinusZ(caseDir);
       }
       const std::string text = proxy::functionDictionaries(so, patches, interval, samplerLibrary, which);
       if (dictOutput.empty()) {

@@ -200,4 +200,25 @@ TEST_F(SamplerUserCases, KilledRunKeepsEveryRecordInThePartialFile) {
   std::printf("killed after t = 0.2 s: %zu records in %s\n", reader.times().size(), partial.c_str());
 }
 
+TEST_F(SamplerUserCases, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
+  const fs::path dir = caseWith("y-up", ARMOUR_SAMPLER_LIB);
+  replaceInFile(dir / "constant/g", R"(value \(0 0 -9.81\);)", "value (0 -9.81 0);");
+  ASSERT_NE(slurp(dir / "constant/g").find("(0 -9.81 0)"), std::string::npos);
+  const int rc = run("interFoam", dir, "log.interFoam");
+  const std::string log = slurp(dir / "log.interFoam");
+  EXPECT_EQ(rc, 1) << log;
+  EXPECT_NE(log.find("constant/g: value = (0 -9.81 0): gravity must point along -z"), std::string::npos) << log;
+  EXPECT_NE(log.find("transformPoints"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "postProcessing/armourSampler/storm.nc.partial"));
+  // foam-proxy refuses it too: dict (the case is the folder above system/) and sample.
+  for (const std::string& command : {std::string(" dict --patches unit") + kGridArgs + " -o system/again",
+                                     std::string(" sample") + kGridArgs + " -o offline.nc"}) {
+    EXPECT_EQ(run(ARMOUR_FOAM_PROXY + command, dir, "log.proxy"), 1) << command;
+    EXPECT_NE(slurp(dir / "log.proxy").find("constant/g: value = (0 -9.81 0): gravity must point along -z"),
+              std::string::npos) << command << ": " << slurp(dir / "log.proxy");
+  }
+  EXPECT_FALSE(fs::exists(dir / "system/again"));
+  EXPECT_FALSE(fs::exists(dir / "offline.nc"));
+}
+
 } // namespace

@@ -324,3 +324,35 @@ TEST(CaseChecks, DynamicMeshIsRefusedNamingTheMeshTypeAndTheFix) {
   std::ofstream(d / "constant/dynamicMeshDict") << "dynamicFvMesh staticFvMesh;\n";
   EXPECT_NO_THROW(proxy::requireStaticMesh(d));
 }
+
+TEST(CaseChecks, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
+  const fs::path d = tempDir("gravity");
+  fs::create_directories(d / "constant");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d)); // no constant/g: nothing to check
+  const auto writeG = [&](const std::string& value) {
+    std::ofstream(d / "constant/g") << "FoamFile { version 2.0; format ascii; class uniformDimensionedVectorField; "
+                                       "object g; }\ndimensions [0 1 -2 0 0 0 0];\nvalue " << value << ";\n";
+  };
+  writeG("(0 0 -9.81)");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d));
+  writeG("( 0  0  -9.80665 )");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d));
+  for (const char* bad : {"(0 -9.81 0)", "(0 0 9.81)", "(-9.81 0 0)", "(0 0.1 -9.81)"}) {
+    writeG(bad);
+    const std::string error = inputError([&] { proxy::requireGravityAlongMinusZ(d); });
+    EXPECT_NE(error.find("constant/g: value = "), std::string::npos) << bad << ": " << error;
+    EXPECT_NE(error.find("gravity must point along -z"), std::string::npos) << bad << ": " << error;
+    EXPECT_NE(error.find("transformPoints"), std::string::npos) << bad << ": " << error;
+  }
+  writeG("(0 0 -9.81x)");
+  EXPECT_NE(inputError([&] { proxy::requireGravityAlongMinusZ(d); }).find("'-9.81x' is not a number"), std::string::npos);
+
+  // sample refuses the case before reading anything.
+  writeG("(0 -9.81 0)");
+  proxy::SampleOptions o;
+  o.caseDir = d;
+  o.output = d / "storm.nc";
+  const std::string error = inputError([&] { proxy::sampleSurfaces(o); });
+  EXPECT_NE(error.find("transformPoints"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(o.output));
+}
