@@ -299,6 +299,24 @@ void Foam::functionObjects::armourSampler::setGeometry()
         << voxels << " voxels with data; eta from " << etaCellCount << " cells with centres within "
         << stats_->etaHalfWidth() << " m of y = " << stats_->etaPlaneY() << " m; writing " << file_
         << endl;
+    if (!twoD_)
+    {
+        // Where the voxels sit: the solver's interpolation weight on voxels without data at the
+        // unit faces (docs/foam-bridge.md).
+        double weight = 0.0, faces = 0.0;
+        stats_->addGapWeight(weight, faces);
+        reduce(weight, sumOp<scalar>());
+        reduce(faces, sumOp<scalar>());
+        const double share = faces > 0 ? weight/faces : 0.0;
+        Info<< "armourSampler " << name() << ": at the unit faces, " << 100.0*share
+            << " % of the interpolation weight falls on voxels without data" << endl;
+        if (share > armour::bridge::VoxelStatistics::kGapWeightWarning)
+        {
+            WarningInFunction
+                << "armourSampler " << name() << ": "
+                << armour::bridge::VoxelStatistics::gapWeightWarning(share).c_str() << endl;
+        }
+    }
     if (voxels == 0)
     {
         WarningInFunction

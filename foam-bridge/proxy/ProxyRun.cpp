@@ -107,6 +107,16 @@ SampleSummary sampleSurfaces(const SampleOptions& o) {
                         summary.samplePoints, o.sampler.grid.xMin, o.sampler.grid.zMin, o.sampler.grid.nx,
                         o.sampler.grid.nz, o.sampler.grid.trunkOrigin, o.sampler.grid.trunkLength);
       }
+      if (!o.twoD) {
+        double weight = 0.0, points = 0.0;
+        stats.addGapWeight(weight, points);
+        summary.gapWeight = points > 0.0 ? weight / points : 0.0;
+        log->info("at the unit faces, {:.3g} % of the interpolation weight falls on voxels without data",
+                  100.0 * summary.gapWeight);
+        if (summary.gapWeight > bridge::VoxelStatistics::kGapWeightWarning) {
+          log->warn("{}", bridge::VoxelStatistics::gapWeightWarning(summary.gapWeight));
+        }
+      }
       storm::StormHeader header = stats.header(!o.twoD);
       header.provenance = o.provenance;
       writer = std::make_unique<storm::StormWriter>(o.output.string(), header, o.write);

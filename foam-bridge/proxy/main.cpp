@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   proxy::SampleOptions so;
   std::string title, comment, forcesCsv;
   bool doublePrecision = false;
-  auto addSettings = [&so](CLI::App* c) {
+  std::vector<double> centreAt;
+  auto addSettings = [&so, &centreAt](CLI::App* c) {
     c->add_option("--surfaces-function", so.surfacesFunction, "name of the surfaces function object (3D)")->capture_default_str();
     c->add_option("--units-surface", so.unitsSurface, "surface of the unit patches (p, alpha)")->capture_default_str();
     c->add_option("--cells-surface", so.cellsSurface, "patchInternalField surface of the unit patches (U); '' = U of the units surface")->capture_default_str();
@@ -88,6 +89,9 @@ int main(int argc, char** argv) {
     c->add_option("--amplitude", so.sampler.normalisationAmplitude, "a_n of P_n = rho g a_n (m); 0 = from eta")->capture_default_str();
     c->add_option("--p-ref", so.sampler.pressureReference, "subtracted from p (Pa)")->capture_default_str();
     c->add_option("--min-samples", so.sampler.minimumSamples, "fewest faces per voxel for deviations")->capture_default_str();
+    c->add_option("--centre-at", centreAt, "X Z: move --x-min and --z-min by at most half a voxel so that voxel "
+                  "centres lie at x = X and z = Z (e.g. on the flat faces of axis-aligned units; docs/foam-bridge.md, "
+                  "\"Where the voxels sit\")")->expected(2);
   };
   CLI::App* sample = app.add_subcommand("sample", "read the surfaces and sets output of a run and write a storm file");
   addSettings(sample);
@@ -143,6 +147,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   auto log = core::logger("foam-proxy");
   try {
+    if (centreAt.size() == 2) {
+      const bridge::VoxelGridSettings before = so.sampler.grid;
+      bridge::centreVoxelsOn(so.sampler.grid, centreAt[0], centreAt[1]);
+      log->info("--centre-at {} {}: x-min {} -> {} m, z-min {} -> {} m (voxel centres at x = {} m and z = {} m)",
+                centreAt[0], centreAt[1], before.xMin, so.sampler.grid.xMin, before.zMin, so.sampler.grid.zMin,
+                centreAt[0], centreAt[1]);
+    }
     if (*sample) {
       so.write.doublePrecision = doublePrecision;
       so.provenance = provenance(command, title, comment);
