@@ -85,4 +85,10 @@ void requireGravityAlongMinusZ(const fs::path& caseDir) {
                   (*g)[0], (*g)[1], (*g)[2], -mag);
 }
 
+std::string sourceCasePath(const fs::path& caseDir) {
+  fs::path p = fs::absolute(caseDir).lexically_normal();
+  if (!p.has_filename() && p != p.root_path()) p = p.parent_path();
+  return p.string();
+}
+
 } // namespace armour::proxy

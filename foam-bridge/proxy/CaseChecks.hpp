@@ -31,4 +31,8 @@ std::optional<std::array<double, 3>> caseGravity(const std::filesystem::path& ca
 /// along -z (sideways components above 1e-6 |g|, the armourSampler's tolerance). No file: no check.
 void requireGravityAlongMinusZ(const std::filesystem::path& caseDir);
 
+/// The storm file's source_case for a case folder, as the armourSampler function object writes it:
+/// absolute, normalised, without a trailing separator ("--case ." gave "/runs/tank/").
+std::string sourceCasePath(const std::filesystem::path& caseDir);
+
 } // namespace armour::proxy

@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
     if (*sample) {
       so.write.doublePrecision = doublePrecision;
       so.provenance = provenance(command, title, comment);
-      so.provenance.sourceCase = std::filesystem::absolute(so.caseDir).lexically_normal().string();
+      so.provenance.sourceCase = proxy::sourceCasePath(so.caseDir);
       const auto start = std::chrono::steady_clock::now();
       const proxy::SampleSummary s = proxy::sampleSurfaces(so);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -356,3 +356,14 @@ TEST(CaseChecks, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
   EXPECT_NE(error.find("transformPoints"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(o.output));
 }
+
+TEST(CaseChecks, SourceCaseIsWrittenAsTheSamplerWritesIt) {
+  // The function object writes the case's global path, absolute and without a trailing '/'.
+  const fs::path d = tempDir("source-case");
+  const std::string expected = fs::canonical(d).string();
+  EXPECT_EQ(proxy::sourceCasePath(d), expected);
+  EXPECT_EQ(proxy::sourceCasePath(d / ""), expected);        // "case/"
+  EXPECT_EQ(proxy::sourceCasePath(d / "."), expected);       // "case/." (foam-proxy's default --case .)
+  EXPECT_EQ(proxy::sourceCasePath(d / "x" / ".."), expected);
+  EXPECT_EQ(proxy::sourceCasePath("/"), "/");
+}
