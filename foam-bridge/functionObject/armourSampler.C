@@ -174,9 +174,12 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     provenance_.openfoamVersion =
         foamVersion::version.empty() ? "v" + std::to_string(foamVersion::api) : foamVersion::version;
     provenance_.software = "armour foam-bridge armourSampler " + armour::core::version();
-    const std::string solver = solverCommandLine();
-    provenance_.command = (solver.empty() ? std::string(mesh_.time().controlDict().lookupOrDefault<word>("application", "OpenFOAM solver")) : solver)
-        + " (function object " + name() + ", type armourSampler)";
+    std::string solver = solverCommandLine();
+    if (solver.empty())
+    {
+        solver = mesh_.time().controlDict().lookupOrDefault<word>("application", "OpenFOAM solver");
+    }
+    provenance_.command = solver + " (function object " + name() + ", type armourSampler)";
     writeOptions_.syncEachRecord = true;  // a killed run keeps every record in storm.nc.partial
 
     if (mesh_.dynamic())
