@@ -174,7 +174,9 @@ TEST_F(SamplerUserCases, KilledRunKeepsEveryRecordInThePartialFile) {
   bool killed = false;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
   while (!killed && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    // Every 2 ms: the next sample (0.25 s) is several time steps away, so the kill lands between
+    // appends, not inside one (a record cut short would show as "never completed").
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
     const std::string log = slurp(logFile);
     double last = -1.0;
     for (std::sregex_iterator it(log.begin(), log.end(), timeLine), end; it != end; ++it) last = std::stod((*it)[1]);
