@@ -80,5 +80,18 @@ long VoxelGrid::voxel(double x, double y, double z) const {
   return static_cast<long>(iz) * settings_.nx + ix;
 }
 
+void centreVoxelsOn(VoxelGridSettings& grid, double x, double z) {
+  // The origin of the lattice x - dx/2 + k dx nearest to the given one: a shift of at most dx/2;
+  // at a tie (the given edges lie exactly on X) downwards, so the grid still covers its lower end.
+  // 1e-9: a tie computed with round-off is still a tie.
+  const auto align = [](double& origin, double at, double d) {
+    if (!std::isfinite(at) || !(d > 0.0)) return;
+    const double first = at - 0.5 * d;
+    origin = first - std::floor((first - origin) / d + 0.5 + 1e-9) * d;
+  };
+  align(grid.xMin, x, grid.dx);
+  align(grid.zMin, z, grid.dz);
+}
+
 } // namespace bridge
 } // namespace armour

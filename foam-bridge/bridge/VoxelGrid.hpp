@@ -75,6 +75,11 @@ private:
   VoxelGridSettings settings_;
 };
 
+/// Move xMin and zMin by at most half a voxel (down at a tie) so that the lattice of voxel centres
+/// passes through x (and z): put the centres, not the edges, on the flat faces of axis-aligned
+/// units (docs/foam-bridge.md, "Where the voxels sit"). NaN leaves that axis as it is.
+void centreVoxelsOn(VoxelGridSettings& grid, double x, double z);
+
 /// Throw std::invalid_argument("<where>: <message>"): the C++11 core's input errors (foam-proxy
 /// turns them into core::InputError, the function object into a FatalError).
 void failSetting(const std::string& where, const std::string& message);

@@ -61,6 +61,47 @@ void VoxelStatistics::setSamplePoints(const std::vector<double>& x, const std::v
   if (y.size() != x.size() || z.size() != x.size()) failSetting("setSamplePoints", "x, y and z differ in length");
   pointVoxel_.resize(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) pointVoxel_[i] = grid_.voxel(x[i], y[i], z[i]);
+  pointX_ = x;
+  pointZ_ = z;
+}
+
+std::string VoxelStatistics::gapWeightWarning(double meanGapWeight) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "at the unit faces, " << 100.0 * meanGapWeight << " % of the solver's interpolation weight falls on voxels "
+    << "without data, which it fills with still water (more than " << 100.0 * kGapWeightWarning << " %): the voxel "
+    << "grid's edges lie on or near flat unit faces. Measured on an axis-aligned box hit by a surge "
+    << "(docs/foam-bridge.md, \"Where the voxels sit\"): 47 % gave a peak force 15 % low, 22 % 11 % low, 0 % "
+    << "(voxel centres on the faces) 4 % low. Shift the grid (xMin, zMin) by a fraction of a voxel so that voxel "
+    << "centres, not edges, fall on the units' flat faces";
+  return s.str();
+}
+
+void VoxelStatistics::addGapWeight(double& weightSum, double& points) const {
+  const VoxelGridSettings& g = grid_.settings();
+  // The interpolation stencil of StormSampler: between the centres around the point, held (not
+  // extrapolated) within half a voxel beyond the outermost centres.
+  const auto stencil = [](double c, double c0, double d, int n, int& i0, double& r) {
+    const double f = (c - c0) / d;
+    i0 = static_cast<int>(std::floor(f));
+    i0 = std::max(0, std::min(n - 2, i0));
+    r = std::max(0.0, std::min(1.0, f - i0));
+  };
+  for (std::size_t i = 0; i < pointVoxel_.size(); ++i) {
+    if (pointVoxel_[i] < 0) continue;
+    int ix = 0, iz = 0;
+    double r = 0.0, q = 0.0;
+    stencil(pointX_[i], grid_.xCentre(0), g.dx, g.nx, ix, r);
+    stencil(pointZ_[i], grid_.zCentre(0), g.dz, g.nz, iz, q);
+    const double w[4] = {(1 - r) * (1 - q), r * (1 - q), (1 - r) * q, r * q};
+    const std::size_t nx = static_cast<std::size_t>(g.nx), x0 = static_cast<std::size_t>(ix);
+    const std::size_t z0 = static_cast<std::size_t>(iz);
+    const std::size_t v[4] = {z0 * nx + x0, z0 * nx + x0 + 1, (z0 + 1) * nx + x0, (z0 + 1) * nx + x0 + 1};
+    for (int k = 0; k < 4; ++k) {
+      if (counts_[v[k]] == 0 && w[k] > 1e-9) weightSum += w[k]; // 1e-9: round-off of a point on a centre
+    }
+    points += 1.0;
+  }
 }
 
 std::vector<double> VoxelStatistics::localCounts() const {

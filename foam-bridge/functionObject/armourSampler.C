@@ -4,14 +4,21 @@
 #include "armourSampler.H"
 
 #include "addToRunTimeSelectionTable.H"
+#include "foamVersion.H"
 #include "fvCFD.H"
+#include "mapPolyMesh.H"
 #include "OFstream.H"
 #include "uniformDimensionedFields.H"
 #include "wordRes.H"
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
+
+// armour's version (solver/core/BuildInfo.hpp, which is C++17: declared here in C++11 form).
+namespace armour { namespace core { std::string version(); } }
 
 namespace Foam
 {
@@ -51,6 +58,17 @@ void maxAll(std::vector<double>& v)
     }
 }
 
+// The solver's command line (e.g. "interFoam -parallel"), for the storm file's history: the
+// function object has no argList. Linux: /proc/self/cmdline, arguments separated by NULs.
+std::string solverCommandLine()
+{
+    std::ifstream in("/proc/self/cmdline", std::ios::binary);
+    std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    while (!s.empty() && s.back() == '\0') s.pop_back();
+    for (char& c : s) if (c == '\0') c = ' ';
+    return s;
+}
+
 } // namespace
 
 
@@ -66,7 +84,8 @@ Foam::functionObjects::armourSampler::armourSampler
     finished_(false),
     records_(0),
     seconds_(0.0),
-    created_(std::chrono::steady_clock::now())
+    created_(std::chrono::steady_clock::now()),
+    nCells_(0)
 {
     read(dict);
 }
@@ -103,7 +122,21 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     scalar magG = 9.81;
     if (mesh_.time().foundObject<uniformDimensionedVectorField>("g"))
     {
-        magG = mag(mesh_.time().lookupObject<uniformDimensionedVectorField>("g").value());
+        const vector g = mesh_.time().lookupObject<uniformDimensionedVectorField>("g").value();
+        magG = mag(g);
+        // The storm file's axes are fixed: z up (eta, the still water level, hydrostatics), x along
+        // the waves, y along the trunk. Only |g| is used, so a case with y up would be sampled into
+        // the wrong axes without a word. 1e-6 |g| of sideways gravity is round-off, not a tilt.
+        if (!(g.z() < 0 && mag(g.x()) <= 1e-6*magG && mag(g.y()) <= 1e-6*magG))
+        {
+            FatalIOErrorInFunction(dict)
+                << "armourSampler " << name() << ": constant/g: value = " << g
+                << ": gravity must point along -z (the storm file has z up, x along the waves and y "
+                << "along the trunk). Rotate the case so that z is up and the waves travel along x: "
+                << "transformPoints -rotate '(<up axis> (0 0 1))' -rotateFields (e.g. '((0 1 0) (0 0 1))' "
+                << "for a case with y up), then set g to (0 0 " << -magG << ") in constant/g"
+                << exit(FatalIOError);
+        }
     }
     s.gravity = dict.lookupOrDefault<scalar>("gravity", magG);
     s.wetAlpha = dict.lookupOrDefault<scalar>("wetAlpha", 0.5);
@@ -131,10 +164,38 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
     writeOptions_.deflateLevel = dict.lookupOrDefault<label>("deflate", 1);
     provenance_.title = dict.lookupOrDefault<string>("title", "");
     provenance_.comment = dict.lookupOrDefault<string>("comment", "");
-    provenance_.sourceCase = mesh_.time().globalPath();
-    provenance_.openfoamVersion = "v1912";
-    provenance_.software = "armour foam-bridge armourSampler function object";
-    provenance_.command = "interFoam with functions { " + name() + " { type armourSampler; } }";
+    // The same provenance as foam-proxy's (docs/storm-file.md): the case, the OpenFOAM version
+    // of the running solver, armour's version and the command (the solver's command line).
+    fileName caseDir(mesh_.time().globalPath());
+    caseDir.clean();
+    provenance_.sourceCase = caseDir;
+    // The running library's api (Debian's build leaves foamVersion::version empty): "v1912", as
+    // foam-proxy writes it.
+    provenance_.openfoamVersion =
+        foamVersion::version.empty() ? "v" + std::to_string(foamVersion::api) : foamVersion::version;
+    provenance_.software = "armour foam-bridge armourSampler " + armour::core::version();
+    std::string solver = solverCommandLine();
+    if (solver.empty())
+    {
+        solver = mesh_.time().controlDict().lookupOrDefault<word>("application", "OpenFOAM solver");
+    }
+    provenance_.command = solver + " (function object " + name() + ", type armourSampler)";
+    writeOptions_.syncEachRecord = true;  // a killed run keeps every record in storm.nc.partial
+
+    if (mesh_.dynamic())
+    {
+        // The faces, their voxels and the samples per voxel m are found once and m is written in
+        // the storm file's header: a mesh that changes its topology (dynamicRefineFvMesh) or moves
+        // (dynamicMotionSolverFvMesh) would invalidate all three. Refused before the first sample.
+        FatalIOErrorInFunction(dict)
+            << "armourSampler " << name() << ": the mesh is a " << meshType()
+            << " (constant/dynamicMeshDict: dynamicFvMesh " << meshType() << "), a mesh that "
+            << "changes during the run; armourSampler samples static meshes only (the unit faces, "
+            << "their voxels and the samples per voxel of the storm file are fixed). Set "
+            << "`dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict and refine the free-surface "
+            << "band and the units beforehand (refineMesh, snappyHexMesh refinement regions)"
+            << exit(FatalIOError);
+    }
 
     if (!twoD_)
     {
@@ -166,6 +227,7 @@ bool Foam::functionObjects::armourSampler::read(const dictionary& dict)
 void Foam::functionObjects::armourSampler::setGeometry()
 {
     const armour::bridge::VoxelGrid& grid = stats_->grid();
+    nCells_ = mesh_.nCells();
     std::vector<double> x, y, z;
     if (twoD_)
     {
@@ -240,6 +302,24 @@ void Foam::functionObjects::armourSampler::setGeometry()
         << voxels << " voxels with data; eta from " << etaCellCount << " cells with centres within "
         << stats_->etaHalfWidth() << " m of y = " << stats_->etaPlaneY() << " m; writing " << file_
         << endl;
+    if (!twoD_)
+    {
+        // Where the voxels sit: the solver's interpolation weight on voxels without data at the
+        // unit faces (docs/foam-bridge.md).
+        double weight = 0.0, faces = 0.0;
+        stats_->addGapWeight(weight, faces);
+        reduce(weight, sumOp<scalar>());
+        reduce(faces, sumOp<scalar>());
+        const double share = faces > 0 ? weight/faces : 0.0;
+        Info<< "armourSampler " << name() << ": at the unit faces, " << 100.0*share
+            << " % of the interpolation weight falls on voxels without data" << endl;
+        if (share > armour::bridge::VoxelStatistics::kGapWeightWarning)
+        {
+            WarningInFunction
+                << "armourSampler " << name() << ": "
+                << armour::bridge::VoxelStatistics::gapWeightWarning(share).c_str() << endl;
+        }
+    }
     if (voxels == 0)
     {
         WarningInFunction
@@ -264,6 +344,7 @@ void Foam::functionObjects::armourSampler::collect
     const volScalarField& p = mesh_.lookupObject<volScalarField>(pName_);
     const volVectorField& U = mesh_.lookupObject<volVectorField>(UName_);
     const volScalarField& alpha = mesh_.lookupObject<volScalarField>(alphaName_);
+    checkMeshUnchanged();
     values.resize(stats_->samplePoints());
     force = Zero;
     std::size_t k = 0;
@@ -301,6 +382,52 @@ void Foam::functionObjects::armourSampler::collect
             ++k;
         }
     }
+}
+
+
+const Foam::word& Foam::functionObjects::armourSampler::meshType() const
+{
+    // fvMesh is a polyMesh and an lduMesh, both with a type(): the polyMesh's is the run-time
+    // selected mesh class (staticFvMesh, dynamicRefineFvMesh, ...).
+    return static_cast<const polyMesh&>(mesh_).type();
+}
+
+
+void Foam::functionObjects::armourSampler::checkMeshUnchanged() const
+{
+    // Never index past the arrays sized by setGeometry(): a mesh whose cells or unit faces changed
+    // since (a mesh type that does not say it is dynamic, a topology change we were not told of)
+    // stops the run here, naming what changed.
+    label faces = 0;
+    forAll(patchIDs_, i) faces += mesh_.boundary()[patchIDs_[i]].size();
+    const label expected = twoD_ ? label(0) : label(stats_->samplePoints());
+    if (mesh_.nCells() != nCells_ || faces != expected)
+    {
+        FatalErrorInFunction
+            << "armourSampler " << name() << ": the " << meshType() << " mesh changed since the "
+            << "sampler was set up (" << nCells_ << " -> " << mesh_.nCells() << " cells, " << expected
+            << " -> " << faces << " unit faces on this rank); armourSampler samples static meshes only: "
+            << "set `dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict" << exit(FatalError);
+    }
+}
+
+
+void Foam::functionObjects::armourSampler::updateMesh(const mapPolyMesh&)
+{
+    checkMeshUnchanged();
+    FatalErrorInFunction
+        << "armourSampler " << name() << ": the " << meshType() << " mesh changed its topology; "
+        << "armourSampler samples static meshes only: set `dynamicFvMesh staticFvMesh;` in "
+        << "constant/dynamicMeshDict" << exit(FatalError);
+}
+
+
+void Foam::functionObjects::armourSampler::movePoints(const polyMesh&)
+{
+    FatalErrorInFunction
+        << "armourSampler " << name() << ": the " << meshType() << " mesh moved; armourSampler "
+        << "samples static meshes only (the unit faces are binned into voxels once): set "
+        << "`dynamicFvMesh staticFvMesh;` in constant/dynamicMeshDict" << exit(FatalError);
 }
 
 
@@ -363,10 +490,9 @@ bool Foam::functionObjects::armourSampler::execute()
             if (!writer_)
             {
                 mkDir(file_.path());
-                writer_.reset
-                (
-                    new armour::storm::StormWriter(file_, stats_->header(!twoD_), writeOptions_)
-                );
+                armour::storm::StormHeader header = stats_->header(!twoD_);
+                header.provenance = provenance_;
+                writer_.reset(new armour::storm::StormWriter(file_, header, writeOptions_));
             }
             stats_->observeEta(record.eta);
             writer_->append(record);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "proxy/ProxyRun.hpp"
 
+#include "proxy/CaseChecks.hpp"
 #include "proxy/SurfaceSeries.hpp"
 
 #include "core/Error.hpp"
@@ -47,6 +48,9 @@ void requireSameFaces(const Surface& a, const Surface& b) {
 
 SampleSummary sampleSurfaces(const SampleOptions& o) {
   auto log = core::logger("foam-proxy");
+  // The armourSampler's refusals (issue 23): a changing mesh, gravity not along -z.
+  requireStaticMesh(o.caseDir);
+  requireGravityAlongMinusZ(o.caseDir);
   const fs::path setsFolder = o.caseDir / "postProcessing" / o.setsFunction;
   const fs::path surfacesFolder = o.caseDir / "postProcessing" / o.surfacesFunction;
   std::vector<SampleTime> times = listSampleTimes(setsFolder);
@@ -102,6 +106,16 @@ SampleSummary sampleSurfaces(const SampleOptions& o) {
                         "{} m, {} x {} voxels, trunk y from {} m over {} m): check the grid and trunk settings",
                         summary.samplePoints, o.sampler.grid.xMin, o.sampler.grid.zMin, o.sampler.grid.nx,
                         o.sampler.grid.nz, o.sampler.grid.trunkOrigin, o.sampler.grid.trunkLength);
+      }
+      if (!o.twoD) {
+        double weight = 0.0, points = 0.0;
+        stats.addGapWeight(weight, points);
+        summary.gapWeight = points > 0.0 ? weight / points : 0.0;
+        log->info("at the unit faces, {:.3g} % of the interpolation weight falls on voxels without data",
+                  100.0 * summary.gapWeight);
+        if (summary.gapWeight > bridge::VoxelStatistics::kGapWeightWarning) {
+          log->warn("{}", bridge::VoxelStatistics::gapWeightWarning(summary.gapWeight));
+        }
       }
       storm::StormHeader header = stats.header(!o.twoD);
       header.provenance = o.provenance;

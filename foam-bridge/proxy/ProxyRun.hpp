@@ -44,6 +44,8 @@ struct SampleSummary {
   std::size_t records = 0;
   std::size_t samplePoints = 0;       ///< faces (3D) or voxel centres (2D) read
   std::size_t samplePointsInGrid = 0; ///< of those, in a voxel
+  /// Mean interpolation weight on voxels without data at the faces in the grid (3D; VoxelStatistics::addGapWeight) (unit: -)
+  double gapWeight = 0.0;
   std::size_t voxelsWithData = 0;
   bridge::DeviationHistogram histogram;
   storm::Variability variability;

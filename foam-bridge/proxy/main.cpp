@@ -7,6 +7,7 @@
 //   foam-proxy fit     deviations.txt                              Weibull MLE of a column of numbers
 
 #include "bridge/WeibullMle.hpp"
+#include "proxy/CaseChecks.hpp"
 #include "proxy/ProxyRun.hpp"
 
 #include "core/BuildInfo.hpp"
@@ -54,7 +55,8 @@ int main(int argc, char** argv) {
   proxy::SampleOptions so;
   std::string title, comment, forcesCsv;
   bool doublePrecision = false;
-  auto addSettings = [&so](CLI::App* c) {
+  std::vector<double> centreAt;
+  auto addSettings = [&so, &centreAt](CLI::App* c) {
     c->add_option("--surfaces-function", so.surfacesFunction, "name of the surfaces function object (3D)")->capture_default_str();
     c->add_option("--units-surface", so.unitsSurface, "surface of the unit patches (p, alpha)")->capture_default_str();
     c->add_option("--cells-surface", so.cellsSurface, "patchInternalField surface of the unit patches (U); '' = U of the units surface")->capture_default_str();
@@ -87,6 +89,9 @@ int main(int argc, char** argv) {
     c->add_option("--amplitude", so.sampler.normalisationAmplitude, "a_n of P_n = rho g a_n (m); 0 = from eta")->capture_default_str();
     c->add_option("--p-ref", so.sampler.pressureReference, "subtracted from p (Pa)")->capture_default_str();
     c->add_option("--min-samples", so.sampler.minimumSamples, "fewest faces per voxel for deviations")->capture_default_str();
+    c->add_option("--centre-at", centreAt, "X Z: move --x-min and --z-min by at most half a voxel so that voxel "
+                  "centres lie at x = X and z = Z (e.g. on the flat faces of axis-aligned units; docs/foam-bridge.md, "
+                  "\"Where the voxels sit\")")->expected(2);
   };
   CLI::App* sample = app.add_subcommand("sample", "read the surfaces and sets output of a run and write a storm file");
   addSettings(sample);
@@ -103,13 +108,15 @@ int main(int argc, char** argv) {
   std::vector<std::string> patches{"unit.*"};
   double interval = 0.05;
   std::string samplerLibrary = "libarmourSampler.so";
-  std::string dictOutput, which = "both";
+  std::string dictOutput, dictCase, which = "both";
   CLI::App* dict = app.add_subcommand("dict", "write the function-object dictionaries (armourSampler, surfaces, sets)");
   addSettings(dict);
   dict->add_option("--patches", patches, "armour-unit patch names or regular expressions")->capture_default_str();
   dict->add_option("--interval", interval, "sampling interval (s)")->capture_default_str();
   dict->add_option("--sampler-library", samplerLibrary, "libs entry of armourSampler")->capture_default_str();
   dict->add_option("-o,--output", dictOutput, "file to write (default: standard output)");
+  dict->add_option("--case", dictCase, "the case the dictionaries are for: its constant/g and constant/dynamicMeshDict "
+                   "are checked (default: the folder above system/ when -o is CASE/system/FILE)");
   dict->add_option("--function-objects", which, "both, sampler (armourSampler) or stock (surfaces and sets)")->capture_default_str();
   dict->add_option("--surface-format", so.surfaceFormat, "surfaces output: raw (text, double precision) or vtk "
                    "(binary, float; face areas for sample --forces-csv)")->capture_default_str();
@@ -140,10 +147,17 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   auto log = core::logger("foam-proxy");
   try {
+    if (centreAt.size() == 2) {
+      const bridge::VoxelGridSettings before = so.sampler.grid;
+      bridge::centreVoxelsOn(so.sampler.grid, centreAt[0], centreAt[1]);
+      log->info("--centre-at {} {}: x-min {} -> {} m, z-min {} -> {} m (voxel centres at x = {} m and z = {} m)",
+                centreAt[0], centreAt[1], before.xMin, so.sampler.grid.xMin, before.zMin, so.sampler.grid.zMin,
+                centreAt[0], centreAt[1]);
+    }
     if (*sample) {
       so.write.doublePrecision = doublePrecision;
       so.provenance = provenance(command, title, comment);
-      so.provenance.sourceCase = std::filesystem::absolute(so.caseDir).lexically_normal().string();
+      so.provenance.sourceCase = proxy::sourceCasePath(so.caseDir);
       const auto start = std::chrono::steady_clock::now();
       const proxy::SampleSummary s = proxy::sampleSurfaces(so);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -175,9 +189,32 @@ int main(int argc, char** argv) {
         }
       }
     } else if (*dict) {
+      // The case's refusals first (issue 23): nothing is written for a case the function objects cannot sample.
+      std::filesystem::path caseDir = dictCase;
+      if (caseDir.empty() && !dictOutput.empty()) {
+        const std::filesystem::path system = std::filesystem::absolute(dictOutput).parent_path();
+        if (system.filename() == "system") caseDir = system.parent_path();
+      }
+      if (!caseDir.empty()) {
+        proxy::requireStaticMesh(caseDir);
+        proxy::requireGravityAlongMinusZ(caseDir);
+      }
       const std::string text = proxy::functionDictionaries(so, patches, interval, samplerLibrary, which);
-      if (dictOutput.empty()) std::fputs(text.c_str(), stdout);
-      else std::ofstream(dictOutput) << text;
+      if (dictOutput.empty()) {
+        std::fputs(text.c_str(), stdout);
+      } else {
+        // Written whole or not at all: a temporary file next to it, renamed into place.
+        const std::string partial = dictOutput + ".partial";
+        {
+          std::ofstream out(partial);
+          out << text;
+          out.close();
+          if (!out) core::failInput(partial, "cannot write the file; check the folder exists and is writable");
+        }
+        std::error_code ec;
+        std::filesystem::rename(partial, dictOutput, ec);
+        if (ec) core::failInput(dictOutput, "cannot move '{}' into place ({})", partial, ec.message());
+      }
     } else if (*combine) {
       storm::StormWriteOptions write;
       proxy::combineStorms(seaState, variabilityFrom, combined, provenance(command, title, ""), write);

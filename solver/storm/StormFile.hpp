@@ -114,6 +114,12 @@ struct StormWriteOptions {
   bool doublePrecision = false; ///< NC_DOUBLE instead of NC_FLOAT for p, u, v, w, alpha, eta
   int deflateLevel = 1;         ///< 0 (none) to 9; 1 is nearly as small as 9 and several times faster
   bool shuffle = true;          ///< byte shuffle before deflate (smaller files for smooth fields)
+  /// Flush every record to disk (nc_sync) as it is appended, so a writer that is killed (SIGKILL,
+  /// a crashed solver) leaves a "<path>.partial" holding every record appended so far. Without it
+  /// HDF5 keeps the records and the time dimension's length in its caches until the file is
+  /// closed, and a killed writer leaves a file with 0 records. Costs one flush per record
+  /// (docs/storm-file.md, "Writing"); the armourSampler function object sets it.
+  bool syncEachRecord = false;
 };
 
 /// Writes a storm file record by record. The file is built under "<path>.partial" and renamed to

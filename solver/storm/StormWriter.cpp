@@ -442,6 +442,11 @@ void StormWriter::append(const StormRecord& record) {
   m.check(nc_put_var1_double(m.ncid, m.timeVar, &m.records, &record.time), "write time");
   m.lastTime = record.time;
   ++m.records;
+  if (m.options.syncEachRecord) {
+    // The record and the new length of the time dimension reach the file now: a killed writer
+    // leaves them readable in the .partial file.
+    m.check(nc_sync(m.ncid), "flush a record to disk");
+  }
 }
 
 void StormWriter::setVariability(const Variability& variability) {

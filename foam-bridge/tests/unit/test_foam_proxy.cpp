@@ -3,6 +3,7 @@
 // file of a 2D run declared uniform along y (proxy/ProxyRun sampleSurfaces, functionDictionaries) and
 // the comparison used by the alpha/beta calibration (proxy/ProxyRun compareStorms).
 
+#include "proxy/CaseChecks.hpp"
 #include "proxy/ProxyRun.hpp"
 #include "proxy/SurfaceSeries.hpp"
 
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -288,4 +290,80 @@ TEST(CombineStorms, TakesRecordsFromOneAndVariabilityFromTheOther) {
                                     storm::StormWriteOptions()),
                core::InputError);
   fs::remove_all(d);
+}
+
+// ---- the cases foam-proxy refuses, as the armourSampler does (issue 23 items 1 and 4) ----------
+
+namespace {
+
+std::string inputError(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST(CaseChecks, DynamicMeshIsRefusedNamingTheMeshTypeAndTheFix) {
+  const fs::path d = tempDir("dynamic");
+  fs::create_directories(d / "constant");
+  EXPECT_EQ(proxy::dynamicMeshType(d), "staticFvMesh"); // no dynamicMeshDict: OpenFOAM builds a static mesh
+  EXPECT_NO_THROW(proxy::requireStaticMesh(d));
+  std::ofstream(d / "constant/dynamicMeshDict") << "FoamFile { version 2.0; format ascii; class dictionary; object "
+                                                   "dynamicMeshDict; }\n// dynamicFvMesh staticFvMesh;\n"
+                                                   "dynamicFvMesh   dynamicRefineFvMesh;\n"
+                                                   "dynamicRefineFvMeshCoeffs { refineInterval 1; field alpha.water; }\n";
+  EXPECT_EQ(proxy::dynamicMeshType(d), "dynamicRefineFvMesh"); // the commented-out line is not read
+  const std::string error = inputError([&] { proxy::requireStaticMesh(d); });
+  EXPECT_NE(error.find("constant/dynamicMeshDict"), std::string::npos) << error;
+  EXPECT_NE(error.find("dynamicFvMesh = dynamicRefineFvMesh"), std::string::npos) << error;
+  EXPECT_NE(error.find("`dynamicFvMesh staticFvMesh;`"), std::string::npos) << error;
+  std::ofstream(d / "constant/dynamicMeshDict") << "dynamicFvMesh staticFvMesh;\n";
+  EXPECT_NO_THROW(proxy::requireStaticMesh(d));
+}
+
+TEST(CaseChecks, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
+  const fs::path d = tempDir("gravity");
+  fs::create_directories(d / "constant");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d)); // no constant/g: nothing to check
+  const auto writeG = [&](const std::string& value) {
+    std::ofstream(d / "constant/g") << "FoamFile { version 2.0; format ascii; class uniformDimensionedVectorField; "
+                                       "object g; }\ndimensions [0 1 -2 0 0 0 0];\nvalue " << value << ";\n";
+  };
+  writeG("(0 0 -9.81)");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d));
+  writeG("( 0  0  -9.80665 )");
+  EXPECT_NO_THROW(proxy::requireGravityAlongMinusZ(d));
+  for (const char* bad : {"(0 -9.81 0)", "(0 0 9.81)", "(-9.81 0 0)", "(0 0.1 -9.81)"}) {
+    writeG(bad);
+    const std::string error = inputError([&] { proxy::requireGravityAlongMinusZ(d); });
+    EXPECT_NE(error.find("constant/g: value = "), std::string::npos) << bad << ": " << error;
+    EXPECT_NE(error.find("gravity must point along -z"), std::string::npos) << bad << ": " << error;
+    EXPECT_NE(error.find("transformPoints"), std::string::npos) << bad << ": " << error;
+  }
+  writeG("(0 0 -9.81x)");
+  EXPECT_NE(inputError([&] { proxy::requireGravityAlongMinusZ(d); }).find("'-9.81x' is not a number"), std::string::npos);
+
+  // sample refuses the case before reading anything.
+  writeG("(0 -9.81 0)");
+  proxy::SampleOptions o;
+  o.caseDir = d;
+  o.output = d / "storm.nc";
+  const std::string error = inputError([&] { proxy::sampleSurfaces(o); });
+  EXPECT_NE(error.find("transformPoints"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(o.output));
+}
+
+TEST(CaseChecks, SourceCaseIsWrittenAsTheSamplerWritesIt) {
+  // The function object writes the case's global path, absolute and without a trailing '/'.
+  const fs::path d = tempDir("source-case");
+  const std::string expected = fs::canonical(d).string();
+  EXPECT_EQ(proxy::sourceCasePath(d), expected);
+  EXPECT_EQ(proxy::sourceCasePath(d / ""), expected);        // "case/"
+  EXPECT_EQ(proxy::sourceCasePath(d / "."), expected);       // "case/." (foam-proxy's default --case .)
+  EXPECT_EQ(proxy::sourceCasePath(d / "x" / ".."), expected);
+  EXPECT_EQ(proxy::sourceCasePath("/"), "/");
 }

@@ -252,3 +252,65 @@ TEST(VoxelStatistics, RefusesBadSettings) {
   s.etaHalfWidth = 0.0;
   EXPECT_THROW(VoxelStatistics{s}, std::invalid_argument);
 }
+
+TEST(VoxelStatistics, GapWeightSaysWhetherVoxelEdgesOrCentresLieOnTheFaces) {
+  // The vertical face x = 1 of a unit filling x > 1 (a 2D section: faces every 0.01 m from z = 0
+  // to 0.6), on a grid of 0.1 m voxels. Its faces are the only sample points.
+  const auto share = [](double xMin) {
+    SamplerSettings s;
+    s.grid.xMin = xMin;
+    s.grid.zMin = 0.0;
+    s.grid.dx = 0.1;
+    s.grid.dz = 0.1;
+    s.grid.nx = 10;
+    s.grid.nz = 6;
+    s.grid.trunkOrigin = 0.0;
+    s.grid.trunkLength = 1.0;
+    s.stillWaterLevel = 1.0;
+    VoxelStatistics stats(s);
+    std::vector<double> x, y, z;
+    for (int k = 0; k < 60; ++k) {
+      x.push_back(1.0);
+      y.push_back(0.5);
+      z.push_back(0.005 + 0.01 * k);
+    }
+    stats.setSamplePoints(x, y, z);
+    stats.setCounts(stats.localCounts());
+    double weight = 0.0, points = 0.0;
+    stats.addGapWeight(weight, points);
+    EXPECT_EQ(points, 60.0);
+    return weight / points;
+  };
+  // Voxel edges on the face: its faces go to the voxel above (x 1.0 .. 1.1), the solver
+  // interpolates at x = 1 half from it and half from the empty voxel in front: 0.5.
+  EXPECT_NEAR(share(0.5), 0.5, 1e-12);
+  // Column centres on the face: the whole weight on the column with the data.
+  EXPECT_NEAR(share(0.45), 0.0, 1e-12);
+  // A quarter of a voxel off: 0.25 on the empty voxel.
+  EXPECT_NEAR(share(0.475), 0.25, 1e-9);
+  EXPECT_GT(0.25, VoxelStatistics::kGapWeightWarning); // warned
+  const std::string warning = VoxelStatistics::gapWeightWarning(0.5);
+  EXPECT_NE(warning.find("50 %"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("Shift the grid (xMin, zMin)"), std::string::npos) << warning;
+}
+
+TEST(VoxelGrid, CentreVoxelsOnMovesTheOriginByAtMostHalfAVoxel) {
+  VoxelGridSettings g = smallGrid(); // xMin 10, dx 0.05; zMin -0.1, dz 0.1
+  // Edges on x = 10.2 and z = 0.2 (a tie): the origin moves down half a voxel.
+  centreVoxelsOn(g, 10.2, 0.2);
+  EXPECT_NEAR(g.xMin, 9.975, 1e-12);
+  EXPECT_NEAR(g.zMin, -0.15, 1e-12);
+  const VoxelGrid grid(g);
+  EXPECT_NEAR(grid.xCentre(4), 10.2, 1e-12);
+  EXPECT_NEAR(grid.zCentre(3), 0.2, 1e-12);
+  // Already centred: nothing moves; a small offset: the nearest lattice.
+  centreVoxelsOn(g, 10.2, 0.2);
+  EXPECT_NEAR(g.xMin, 9.975, 1e-12);
+  g.xMin = 9.99;
+  centreVoxelsOn(g, 10.2, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_NEAR(g.xMin, 9.975, 1e-12);
+  EXPECT_NEAR(g.zMin, -0.15, 1e-12); // NaN: z untouched
+  g.xMin = 10.01;
+  centreVoxelsOn(g, 10.2, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_NEAR(g.xMin, 10.025, 1e-12);
+}
