@@ -37,6 +37,12 @@ struct GmshSession::Impl {
 
 GmshSession::GmshSession(const std::string& model) : impl_(std::make_unique<Impl>()) {
   initialiseOnce();
+  // One thread inside gmsh, every session: its first initialisation leaves it at one, but later
+  // sessions ran with the caller's count put back, and its meshing on 2 threads gave another mesh
+  // (the second Core-Loc of a process differed from the first in every vertex; session 13), so a
+  // shape built twice in one process, or an ensemble member after the first, was not reproducible.
+  gmsh::option::setNumber("General.NumThreads", 1);
+  omp_set_num_threads(1);
   gmsh::clear();
   gmsh::model::add(model);
 }
