@@ -317,6 +317,32 @@ TEST(DolosPile, SettledPileIsNotRefusedAsInterpenetrating) {
   EXPECT_NO_THROW(refuseInterpenetration(r, "dolos-pile"));
 }
 
+TEST(DolosPile, ConstraintSolverBuildsThePileAndItsCreepStaysBounded) {
+  // Issue 22, part 4, for the constraint solver (its steps are 50 times longer, so the pile is
+  // built from scratch here): the lattice collapses, 20 s of settling with sleeping off, then 10 s
+  // with every unit awake. The issue's target, 1 mm over 60 s, is NOT met: the pile creeps. Measured
+  // (session 13, 10 s windows from 20 to 100 s): one bottom unit (layer0_6) moves 0.56, 0.41, 0.34,
+  // 0.36, 0.34, 0.34, 0.32, 0.31 mm and turns 2.2, 1.5, 1.3, 1.4, 1.3, 1.3, 1.4, 1.3 mrad per window,
+  // steadily and nearly level: 2.3 mm and 9.1 mrad over 60 s (docs/benchmarks.md). This test guards
+  // that rate (1 mm and 3 mrad over the first window) until the creep is found; the penalty
+  // solver's pile (SettledPileStaysAtRestWithoutSleeping) holds the issue's target.
+  io::Scene scene = pileSceneOf(false);
+  scene.contact.solver = io::ContactSolver::Constraint;
+  Pile pile(scene);
+  if (!pile.advanceTo(20.0)) return;
+  expectAPile(pile, "settled by the constraint solver");
+  const auto positions = pile.positions();
+  const auto orientations = pile.orientations();
+  if (!pile.advanceTo(30.0)) return;
+  const double moved = pile.largestMove(positions);
+  const double turned = pile.largestTurn(orientations);
+  RecordProperty("largest_move_10s_m", sci(moved));
+  RecordProperty("largest_turn_10s_rad", sci(turned));
+  EXPECT_LT(moved, 1e-3) << "over 10 s without sleeping";
+  EXPECT_LT(turned, 3e-3) << "over 10 s without sleeping";
+  expectAPile(pile, "after the window");
+}
+
 #ifdef ARMOUR_LONG_TESTS
 TEST(DolosPile, BuiltFromScratchSettlesAndStaysAtRest) {
   // The lattice collapses into a pile (the units land at up to 5 m/s), 20 s of settling (see the
