@@ -57,6 +57,10 @@ std::string loadAverages() {
   return fmt::format("{:.2f} {:.2f} {:.2f}", a, b, c);
 }
 
+/// A unit slower than this is still (unit: m/s); one that moved less than this x 1 s over the
+/// drift window has not drifted: 1 cm/s, a hundredth of Dn per second.
+constexpr double kStill = 0.01;
+
 /// What any of the solvers offers the measuring loop.
 struct Stepper {
   std::function<void()> step;
@@ -81,6 +85,8 @@ struct Row {
   std::size_t awakeEnd = 0;
   double maxSpeed = 0.0;  ///< at the end (m/s)
   double maxDrift = 0.0;  ///< largest displacement over the drift window (m)
+  std::size_t moving = 0;  ///< units faster than kStill at the end
+  std::size_t drifted = 0; ///< units displaced more than kStill x 1 s over the drift window
   double driftFrom = 0.0; ///< start of the drift window (s)
   std::size_t escaped = 0;
   double meanZ = 0.0;     ///< mean centroid height at the end (m)
@@ -114,7 +120,15 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
       for (std::size_t i = 0; i < s.bodies; ++i) awake += s.awake(i) ? 1 : 0;
       r.awakeSum += static_cast<double>(awake);
       if (s.time() >= nextReport) {
-        fmt::print(stderr, "  {}: t = {:.2f} s, {} awake, {:.0f} s CPU\n", solver, s.time(), awake, threadCpuNow() - cpu0);
+        double fastest = 0.0;
+        std::size_t moving = 0;
+        for (std::size_t i = 0; i < s.bodies; ++i) {
+          const double v = s.velocity(i).norm();
+          fastest = std::max(fastest, v);
+          moving += v > kStill ? 1 : 0;
+        }
+        fmt::print(stderr, "  {}: t = {:.2f} s, {} awake, {} faster than {} m/s, largest speed {:.3g} m/s, {:.0f} s CPU\n",
+                   solver, s.time(), awake, moving, kStill, fastest, threadCpuNow() - cpu0);
         nextReport += 1.0;
       }
     }
@@ -127,8 +141,14 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
   r.dt = r.steps > 0 ? r.seconds / static_cast<double>(r.steps) : 0.0;
   for (std::size_t i = 0; i < s.bodies; ++i) {
     const Vec3 x = s.position(i);
-    r.maxSpeed = std::max(r.maxSpeed, s.velocity(i).norm());
-    if (haveBefore) r.maxDrift = std::max(r.maxDrift, (x - before[i]).norm());
+    const double v = s.velocity(i).norm();
+    r.maxSpeed = std::max(r.maxSpeed, v);
+    r.moving += v > kStill ? 1 : 0;
+    if (haveBefore) {
+      const double d = (x - before[i]).norm();
+      r.maxDrift = std::max(r.maxDrift, d);
+      r.drifted += d > kStill * (r.seconds - r.driftFrom) ? 1 : 0;
+    }
     r.awakeEnd += s.awake(i) ? 1 : 0;
     r.meanZ += x.z() / static_cast<double>(s.bodies);
     // Out of the box by more than the armour guard rail's overlap (0.25 Dn, Dn = 1 m): gone through a wall.
@@ -143,20 +163,23 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
 
 void printRowHeader(double driftWindow) {
   fmt::print("| solver | units as | dt (s) | simulated window (s) | steps | thread CPU (s) | wall (s) | body-steps / "
-             "core-s | simulated body-s / core-s | mean awake | awake at end | largest speed at end (m/s) | largest "
-             "drift over the last {} s (m) | escaped | mean z at end (m) | load avg 1/5/15 min, start; end |\n", driftWindow);
-  fmt::print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+             "core-s | simulated body-s / core-s | mean awake | awake at end | largest speed at end (m/s) | units "
+             "faster than {} m/s | largest drift over the last {} s (m) | units drifted more than {} m | escaped | "
+             "load avg 1/5/15 min, start; end |\n",
+             kStill, driftWindow, kStill * driftWindow);
+  fmt::print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   std::fflush(stdout);
 }
 
 void printRow(const Row& r) {
   const double bodySteps = static_cast<double>(r.bodies) * static_cast<double>(r.steps);
-  fmt::print("| {} | {} | {} | 0 - {:.2f} | {} | {} | {} | {} | {} | {:.0f} | {} | {} | {} (from t = {:.2f} s) "
-             "| {} | {:.3f} | {}; {} |{}\n",
-             r.solver, r.shape, bench::si(r.dt), r.seconds, bench::group(static_cast<double>(r.steps)), bench::si(r.cpu), bench::si(r.wall),
-             bench::group(bodySteps / r.cpu), bench::si(static_cast<double>(r.bodies) * r.seconds / r.cpu),
-             r.steps > 0 ? r.awakeSum / static_cast<double>(r.steps) : 0.0, r.awakeEnd, bench::si(r.maxSpeed),
-             bench::si(r.maxDrift), r.driftFrom, r.escaped, r.meanZ, r.loadStart, r.loadEnd,
+  fmt::print("| {} | {} | {} | 0 - {:.2f} | {} | {} | {} | {} | {} | {:.0f} | {} | {} | {} | {} (from t = {:.2f} s) | {} "
+             "| {} | {}; {} |{}\n",
+             r.solver, r.shape, bench::si(r.dt), r.seconds, bench::group(static_cast<double>(r.steps)),
+             bench::si(r.cpu), bench::si(r.wall), bench::group(bodySteps / r.cpu),
+             bench::si(static_cast<double>(r.bodies) * r.seconds / r.cpu),
+             r.steps > 0 ? r.awakeSum / static_cast<double>(r.steps) : 0.0, r.awakeEnd, bench::si(r.maxSpeed), r.moving,
+             bench::si(r.maxDrift), r.driftFrom, r.drifted, r.escaped, r.loadStart, r.loadEnd,
              r.error.empty() ? "" : " STOPPED: " + r.error);
   std::fflush(stdout);
 }
@@ -299,7 +322,7 @@ int main(int argc, char** argv) {
     fmt::print("\nColumns: body-steps / core-s = units x steps / thread CPU time; simulated body-s / core-s = units x "
                "simulated time / thread CPU time (all units counted, asleep or not); mean awake = units awake per "
                "step, averaged over the window; drift = largest displacement of a centroid between the start of the "
-               "last {} s of the window and its end; escaped = centroids outside the walls or under the floor by "
+               "last {} s of the window and its end (units drifted: more than 1 cm per second of it); escaped = centroids outside the walls or under the floor by "
                "more than 0.25 Dn.\n",
                driftWindow);
     bool ok = true;
