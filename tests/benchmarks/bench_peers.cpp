@@ -3,7 +3,7 @@
 // Bullet 3.24 on the same pile, one after the other in one process, one thread each, so the machine
 // load is shared and the rows are comparable.
 //
-//   bench_peers [--scene cubes|corelocs] [--seconds 10] [--penalty-seconds S]
+//   bench_peers [--scene cubes|corelocs] [--seconds 10] [--penalty-seconds S] [--penalty-cpu-limit C]
 //               [--solvers constraint,bullet-box,bullet-hull,bullet-compound,penalty]
 //               [--pieces 3|5|3,5] [--no-sleep] [--bullet-iterations 10] [--count N] [--seed 1]
 //
@@ -91,10 +91,15 @@ struct Row {
   std::size_t escaped = 0;
   double meanZ = 0.0;     ///< mean centroid height at the end (m)
   std::string loadStart, loadEnd;
+  bool cutShort = false;   ///< stopped before --seconds by the CPU limit
   std::string error;
 };
 
-Row measure(const std::string& solver, Stepper& s, double seconds, double driftWindow, double halfWidth) {
+/// Run `s` to `seconds` of simulated time. With cpuLimit > 0 the run may stop early, at a whole
+/// simulated second, when the next second (costing what the last one did) would pass the limit;
+/// its drift is then taken over that last whole second.
+Row measure(const std::string& solver, Stepper& s, double seconds, double driftWindow, double halfWidth,
+            double cpuLimit) {
   Row r;
   r.solver = solver;
   r.bodies = s.bodies;
@@ -106,6 +111,9 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
   const auto wall0 = std::chrono::steady_clock::now();
   const double cpu0 = threadCpuNow();
   double nextReport = 1.0;
+  std::vector<Vec3> mark(s.bodies); // positions at the last whole second, for a run cut short
+  for (std::size_t i = 0; i < s.bodies; ++i) mark[i] = s.position(i);
+  double markTime = s.time(), cpuAtMark = cpu0;
   try {
     // A step is taken while time < seconds (to round-off): the window ends at the first step at or past it.
     while (s.time() < seconds - 1e-9) {
@@ -121,15 +129,31 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
       r.awakeSum += static_cast<double>(awake);
       if (s.time() >= nextReport) {
         double fastest = 0.0;
-        std::size_t moving = 0;
+        std::size_t moving = 0, which = 0;
         for (std::size_t i = 0; i < s.bodies; ++i) {
           const double v = s.velocity(i).norm();
+          which = v > fastest ? i : which;
           fastest = std::max(fastest, v);
           moving += v > kStill ? 1 : 0;
         }
-        fmt::print(stderr, "  {}: t = {:.2f} s, {} awake, {} faster than {} m/s, largest speed {:.3g} m/s, {:.0f} s CPU\n",
-                   solver, s.time(), awake, moving, kStill, fastest, threadCpuNow() - cpu0);
+        const double cpuNow = threadCpuNow();
+        const Vec3 at = s.position(which);
+        fmt::print(stderr, "  {}: t = {:.2f} s, {} awake, {} faster than {} m/s, largest speed {:.3g} m/s (unit {} at "
+                   "({:.2f}, {:.2f}, {:.2f}) m), {:.0f} s CPU\n",
+                   solver, s.time(), awake, moving, kStill, fastest, which, at.x(), at.y(), at.z(), cpuNow - cpu0);
         nextReport += 1.0;
+        if (cpuLimit > 0.0 && s.time() < seconds - 1e-9 && (cpuNow - cpu0) + (cpuNow - cpuAtMark) > cpuLimit) {
+          before = mark; // the drift over the last whole second
+          haveBefore = true;
+          r.driftFrom = markTime;
+          r.cutShort = true;
+          fmt::print(stderr, "  {}: stopped at t = {:.2f} s: the next second would pass the CPU limit of {} s\n", solver,
+                     s.time(), cpuLimit);
+          break;
+        }
+        for (std::size_t i = 0; i < s.bodies; ++i) mark[i] = s.position(i);
+        markTime = s.time();
+        cpuAtMark = cpuNow;
       }
     }
   } catch (const std::exception& e) {
@@ -180,7 +204,8 @@ void printRow(const Row& r) {
              bench::si(static_cast<double>(r.bodies) * r.seconds / r.cpu),
              r.steps > 0 ? r.awakeSum / static_cast<double>(r.steps) : 0.0, r.awakeEnd, bench::si(r.maxSpeed), r.moving,
              bench::si(r.maxDrift), r.driftFrom, r.drifted, r.escaped, r.loadStart, r.loadEnd,
-             r.error.empty() ? "" : " STOPPED: " + r.error);
+             r.error.empty() ? (r.cutShort ? " (cut short by --penalty-cpu-limit)" : "")
+                             : " STOPPED: " + r.error);
   std::fflush(stdout);
 }
 
@@ -192,6 +217,7 @@ int main(int argc, char** argv) {
   std::string scene = "cubes";
   double seconds = 10.0;
   double penaltySeconds = -1.0;
+  double penaltyCpuLimit = 0.0;
   double driftWindow = 1.0;
   std::vector<std::string> solvers;
   std::vector<int> pieces{3};
@@ -204,6 +230,9 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", seconds, "simulated time from release, every solver but penalty (s)")
       ->check(CLI::PositiveNumber);
   app.add_option("--penalty-seconds", penaltySeconds, "simulated time of the penalty solver (s); default --seconds");
+  app.add_option("--penalty-cpu-limit", penaltyCpuLimit,
+                 "stop the penalty solver at the whole simulated second after which the next would pass this "
+                 "much thread CPU time (s); 0: no limit");
   app.add_option("--drift-window", driftWindow, "the drift is the largest displacement over this last window (s)");
   app.add_option("--solvers", solvers,
                  "comma-separated, run in this order: constraint, bullet-box (cubes), bullet-hull, bullet-compound, "
@@ -286,7 +315,8 @@ int main(int argc, char** argv) {
         s.position = [&](std::size_t i) { return world.bodies().position(static_cast<sim::BodyId>(i)); };
         s.velocity = [&](std::size_t i) { return world.bodies().velocity(static_cast<sim::BodyId>(i)); };
         s.awake = [&](std::size_t i) { return world.bodies().isAwake(static_cast<sim::BodyId>(i)); };
-        row = measure(solver, s, solver == "penalty" ? penaltySeconds : seconds, driftWindow, p.halfWidth);
+        row = measure(solver, s, solver == "penalty" ? penaltySeconds : seconds, driftWindow, p.halfWidth,
+                      solver == "penalty" ? penaltyCpuLimit : 0.0);
         row.shape = "level set";
         row.description = fmt::format("{}: level set 24 cells per Dn, surface samples 0.1 Dn, {} step {} s{}", solver,
                                       solver, bench::si(world.timeStep()),
@@ -308,7 +338,7 @@ int main(int argc, char** argv) {
         s.velocity = [&](std::size_t i) { return pile.velocity(i); };
         s.awake = [&](std::size_t i) { return pile.awake(i); };
         fmt::print(stderr, "{}: {}\n", solver, pile.description());
-        row = measure(solver, s, seconds, driftWindow, p.halfWidth);
+        row = measure(solver, s, seconds, driftWindow, p.halfWidth, 0.0);
         row.shape = solver == "bullet-box"    ? "btBoxShape"
                     : solver == "bullet-hull" ? "btConvexHullShape"
                                               : fmt::format("btCompoundShape, {} hulls", pile.pieces().pieces.size());
