@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <exception>
@@ -89,7 +90,6 @@ struct Row {
   std::size_t drifted = 0; ///< units displaced more than kStill x 1 s over the drift window
   double driftFrom = 0.0; ///< start of the drift window (s)
   std::size_t escaped = 0;
-  double meanZ = 0.0;     ///< mean centroid height at the end (m)
   std::string loadStart, loadEnd;
   bool cutShort = false;   ///< stopped before --seconds by the CPU limit
   std::string error;
@@ -174,7 +174,6 @@ Row measure(const std::string& solver, Stepper& s, double seconds, double driftW
       r.drifted += d > kStill * (r.seconds - r.driftFrom) ? 1 : 0;
     }
     r.awakeEnd += s.awake(i) ? 1 : 0;
-    r.meanZ += x.z() / static_cast<double>(s.bodies);
     // Out of the box by more than the armour guard rail's overlap (0.25 Dn, Dn = 1 m): gone through a wall.
     if (!x.allFinite() || std::abs(x.x()) > halfWidth + 0.25 || std::abs(x.y()) > halfWidth + 0.25 || x.z() < -0.25) {
       ++r.escaped;
