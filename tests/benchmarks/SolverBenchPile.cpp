@@ -43,49 +43,50 @@ void requirePile(const World& world, const ContactCensus& c, double halfWidth, d
 
 } // namespace
 
-CaseResult runPile(const PileOptions& o) {
+PileScene buildPile(World& world, const PileOptions& o) {
   if (o.shape != "cube" && o.shape != "rock" && o.shape != "coreloc") {
     throw std::invalid_argument(fmt::format("--shape {}: choose cube, rock or coreloc", o.shape));
   }
-  if (o.count < 1 || o.layers < 1 || o.threads.empty()) {
-    throw std::invalid_argument("--count, --layers and --threads must be positive");
+  if (o.count < 1 || o.layers < 1) {
+    throw std::invalid_argument("--count and --layers must be positive");
   }
-  CaseResult r;
-  r.name = fmt::format("{} {}", o.shape, o.count);
-  r.memBase = memoryNow();
-  World world(baseSettings(o.sleep));
-  const MaterialId concrete = addConcrete(world, o.friction, o.restitution);
+  PileScene p;
+  p.name = fmt::format("{} {}", o.shape, o.count);
+  p.concrete = addConcrete(world, o.friction, o.restitution);
   double t0 = wallNow();
-  const ShapeSet shapes = addShapes(world, o.shape, o.rockShapes, o.seed);
-  r.buildShapes = wallNow() - t0;
-  r.memShapes = memoryNow();
+  p.shapes = addShapes(world, o.shape, o.rockShapes, o.seed);
+  p.buildShapes = wallNow() - t0;
+  p.memShapes = memoryNow();
 
   // The box: a drop grid of bounding spheres (largest instance) a gap apart, side x side units
   // per layer. The drop places the units on that grid, jittered by up to gap/2 each way; the
   // deposit builds a loose random pile in the same box, so both give piles of the same height.
   std::mt19937_64 rng(o.seed);
-  const double radius = shapes.radius * o.dn * (o.shape == "rock" ? kMaxScaleOverDn : 1.0);
+  p.radius = p.shapes.radius * o.dn * (o.shape == "rock" ? kMaxScaleOverDn : 1.0);
+  const double radius = p.radius;
   const double gap = o.gap * o.dn;
-  const double cell = 2.0 * radius + 2.0 * gap;
-  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(o.count) / o.layers)));
-  const double halfWidth = 0.5 * side * cell;
+  p.cell = 2.0 * radius + 2.0 * gap;
+  const double cell = p.cell;
+  p.side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(o.count) / o.layers)));
+  const int side = p.side;
+  p.halfWidth = 0.5 * side * cell;
+  const double halfWidth = p.halfWidth;
   const bool drop = o.placement == "drop";
   std::uniform_real_distribution<double> jitter(-0.5 * gap, 0.5 * gap);
-  const std::vector<Deposit::Plane> box{{Vec3(0, 0, 0), Vec3::UnitZ()},
-                                         {Vec3(-halfWidth, 0, 0), Vec3::UnitX()},
-                                         {Vec3(halfWidth, 0, 0), -Vec3::UnitX()},
-                                         {Vec3(0, -halfWidth, 0), Vec3::UnitY()},
-                                         {Vec3(0, halfWidth, 0), -Vec3::UnitY()}};
-  Deposit deposit(-halfWidth, halfWidth, -halfWidth, halfWidth, 2.0 * radius, box);
+  p.box = {{Vec3(0, 0, 0), Vec3::UnitZ()},
+           {Vec3(-halfWidth, 0, 0), Vec3::UnitX()},
+           {Vec3(halfWidth, 0, 0), -Vec3::UnitX()},
+           {Vec3(0, -halfWidth, 0), Vec3::UnitY()},
+           {Vec3(0, halfWidth, 0), -Vec3::UnitY()}};
+  Deposit deposit(-halfWidth, halfWidth, -halfWidth, halfWidth, 2.0 * radius, p.box);
   const double clearance = o.clearance * o.dn; // deposit: gap left between units at release
   t0 = wallNow();
-  double top = 0.0, meanZ = 0.0;
   for (int i = 0; i < o.count; ++i) {
     BodySpec spec;
     spec.name = fmt::format("{}-{}", o.shape, i);
-    spec.shape = shapes.ids[rng() % shapes.ids.size()];
+    spec.shape = p.shapes.ids[rng() % p.shapes.ids.size()];
     spec.scale = drawScale(o.shape, o.dn, rng);
-    spec.material = concrete;
+    spec.material = p.concrete;
     spec.orientation = randomOrientation(rng);
     if (drop) {
       const int layer = i / (side * side), ix = (i / side) % side, iy = i % side;
@@ -98,17 +99,40 @@ CaseResult runPile(const PileOptions& o) {
       spec.orientation = d.orientation;
     }
     world.addBody(spec);
-    top = std::max(top, spec.position.z());
-    meanZ += spec.position.z() / o.count;
+    p.top = std::max(p.top, spec.position.z());
+    p.meanZ += spec.position.z() / o.count;
   }
-  r.placement = wallNow() - t0;
-  fmt::print(stderr, "{}: placed in {:.2f} s, centroids up to z = {:.2f} m, mean {:.2f} m\n", r.name, r.placement, top,
-             meanZ);
+  p.placement = wallNow() - t0;
+  fmt::print(stderr, "{}: placed in {:.2f} s, centroids up to z = {:.2f} m, mean {:.2f} m\n", p.name, p.placement,
+             p.top, p.meanZ);
   const char* wallNames[] = {"floor", "wall-x0", "wall-x1", "wall-y0", "wall-y1"};
-  for (std::size_t k = 0; k < box.size(); ++k) {
-    world.addPlane(StaticPlane{wallNames[k], box[k].point, box[k].normal, concrete});
+  for (std::size_t k = 0; k < p.box.size(); ++k) {
+    world.addPlane(StaticPlane{wallNames[k], p.box[k].point, p.box[k].normal, p.concrete});
   }
-  r.buildBodies = wallNow() - t0;
+  p.buildBodies = wallNow() - t0;
+  return p;
+}
+
+CaseResult runPile(const PileOptions& o) {
+  if (o.shape != "cube" && o.shape != "rock" && o.shape != "coreloc") {
+    throw std::invalid_argument(fmt::format("--shape {}: choose cube, rock or coreloc", o.shape));
+  }
+  if (o.count < 1 || o.layers < 1 || o.threads.empty()) {
+    throw std::invalid_argument("--count, --layers and --threads must be positive");
+  }
+  CaseResult r;
+  r.memBase = memoryNow();
+  World world(baseSettings(o.sleep));
+  const PileScene p = buildPile(world, o);
+  r.name = p.name;
+  r.buildShapes = p.buildShapes;
+  r.memShapes = p.memShapes;
+  r.placement = p.placement;
+  r.buildBodies = p.buildBodies;
+  const double radius = p.radius, halfWidth = p.halfWidth, top = p.top, meanZ = p.meanZ;
+  const int side = p.side;
+  const bool drop = o.placement == "drop";
+  const double clearance = o.clearance * o.dn;
   r.memBodies = memoryNow();
   r.dynamic = static_cast<std::size_t>(o.count);
   r.dt = world.timeStep();

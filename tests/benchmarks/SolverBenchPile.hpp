@@ -4,6 +4,7 @@
 // box, settled, and timed over a window of steps.
 
 #include "benchmarks/SolverBenchCase.hpp"
+#include "benchmarks/SolverBenchDeposit.hpp"
 
 #include <cstdint>
 #include <string>
@@ -35,6 +36,29 @@ struct PileOptions {
   double trace = 0.0;          ///< print progress every this much simulated time while settling (s); 0: off
   std::uint64_t seed = 1;
 };
+
+/// A pile scene as built, before any step: what bench_solver's pile case and bench_peers share.
+struct PileScene {
+  std::string name;          ///< e.g. "cube 256"
+  MaterialId concrete = 0;
+  ShapeSet shapes;
+  double radius = 0.0;       ///< bounding radius of the largest instance (unit: m)
+  double cell = 0.0;         ///< drop-grid pitch: 2 (radius + gap) (unit: m)
+  int side = 0;              ///< units per row of the drop grid (-)
+  double halfWidth = 0.0;    ///< walls at x, y = +-halfWidth (unit: m)
+  std::vector<Deposit::Plane> box; ///< floor at z = 0, then the walls x0, x1, y0, y1
+  double top = 0.0;          ///< highest centroid at release (unit: m)
+  double meanZ = 0.0;        ///< mean centroid height at release (unit: m)
+  double buildShapes = 0.0;  ///< wall time of the shapes (s)
+  double placement = 0.0;    ///< wall time placing the units (s)
+  double buildBodies = 0.0;  ///< wall time of the units and the walls, placement included (s)
+  MemoryMark memShapes;      ///< after the shapes
+};
+
+/// Add the pile of `o` to an empty world: the concrete, the shapes, the units (dropped from the
+/// grid or deposited, random orientations from o.seed) and the five walls, in that order. The
+/// same options give the same scene for either contact solver.
+PileScene buildPile(World& world, const PileOptions& o);
 
 /// Build, settle and measure one pile. Throws InvalidCase when no valid pile forms (units out of
 /// the box, no contacts) and SimulationError when the solver stops.
