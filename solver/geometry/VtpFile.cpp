@@ -11,6 +11,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <exception>
 #include <string>
 
 namespace armour::geometry {
@@ -21,7 +22,16 @@ TriangleMesh readVtp(const std::filesystem::path& path) {
   VtkMessageCapture messages;
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(path.c_str());
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::exception& e) {
+    // VTK believes the sizes in the XML: NumberOfComponents="-1e308" throws std::length_error
+    // and a huge NumberOfPoints std::bad_alloc out of Update() (found by tests/fuzz).
+    core::failInput(path.string(),
+                    "not a readable VTK XML PolyData file: VTK failed with '{}' (a corrupt size or count in the "
+                    "XML?); re-export it from ParaView",
+                    e.what());
+  }
   vtkPolyData* data = reader->GetOutput();
   if (!messages.text().empty() || data == nullptr) {
     core::failInput(path.string(), "not a readable VTK XML PolyData file; re-export it from ParaView. VTK said: {}",

@@ -56,9 +56,9 @@ using armour::core::InputError;
 namespace {
 
 #ifdef ARMOUR_LONG_TESTS
-constexpr std::size_t kSceneExecutions = 300000; // about 10 min in all on one core (docs/verification.md)
-constexpr std::size_t kMeshExecutions = 120000;
-constexpr std::size_t kStormExecutions = 40000;
+constexpr std::size_t kSceneExecutions = 200000; // about 10 min in all on one core (docs/validation.md)
+constexpr std::size_t kMeshExecutions = 80000;
+constexpr std::size_t kStormExecutions = 30000;
 #else
 constexpr std::size_t kSceneExecutions = 5000; // about 15 s in all
 constexpr std::size_t kMeshExecutions = 3000;
@@ -251,7 +251,7 @@ void mutateText(std::string& s, Rng& rng) {
 
 /// Storm files: truncation, or a stored value made extreme (NaN, inf, huge, -0, bit flips).
 /// Only the values are touched: libhdf5 1.10 crashes (double free, SIGSEGV) inside nc_open on
-/// flipped HDF5 metadata bytes, which no reader of ours can catch (docs/verification.md).
+/// flipped HDF5 metadata bytes, which no reader of ours can catch (docs/validation.md).
 void mutateStorm(std::string& s, const std::vector<std::pair<std::size_t, int>>& values, Rng& rng) {
   if (values.empty() || rng.chance(20)) {
     s.resize(rng.below(s.size()));
@@ -534,9 +534,12 @@ std::vector<Seed> meshSeeds(const fs::path& folder) {
   const fs::path block = kData / "scenes" / "meshes" / "block.stl";
   seeds.push_back({"tests/data/scenes/meshes/block.stl", ".stl", {}, readFile(block), true, {}});
   const auto cube = unitCube();
-  const std::array<std::pair<MeshFormat, std::string>, 4> formats = {
-      {{MeshFormat::Stl, "cube-binary.stl"}, {MeshFormat::StlAscii, "cube-ascii.stl"}, {MeshFormat::Obj, "cube.obj"},
-       {MeshFormat::Vtp, "cube.vtp"}}};
+  // Not the .vtp our writer makes: VTK 9.1's XML reader crashes (SIGSEGV in
+  // vtkXMLDataParser::ReadBlock) or allocates ~12 GB on flipped bytes in its zlib-compressed
+  // appended data, inside reader->Update(), where no check of ours can run. The reproducers are
+  // in tests/fuzz/upstream/; an ASCII .vtp below still fuzzes VTK's XML and our conversion.
+  const std::array<std::pair<MeshFormat, std::string>, 3> formats = {
+      {{MeshFormat::Stl, "cube-binary.stl"}, {MeshFormat::StlAscii, "cube-ascii.stl"}, {MeshFormat::Obj, "cube.obj"}}};
   for (const auto& [format, name] : formats) {
     armour::geometry::writeMesh(cube, folder / name, format);
     seeds.push_back({"written " + name, fs::path(name).extension().string(), {}, readFile(folder / name),
@@ -547,6 +550,30 @@ std::vector<Seed> meshSeeds(const fs::path& folder) {
                    "# a unit cube with quads\no cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n"
                    "v 1 1 1\nvn 0 0 -1\nvt 0 0\ns off\nf 1/1/1 3/1/1 4/1/1 2/1/1\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\n"
                    "f -8 -4 -2 -6\nf 2//1 4//1 8//1 6//1\n",
+                   true, {}});
+  seeds.push_back({"hand-written cube-ascii.vtp", ".vtp", {},
+                   "<?xml version=\"1.0\"?>\n"
+                   "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                   "  <PolyData>\n"
+                   "    <Piece NumberOfPoints=\"8\" NumberOfPolys=\"6\">\n"
+                   "      <Points>\n"
+                   "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+                   "          0 0 0 1 0 0 0 1 0 1 1 0\n"
+                   "          0 0 1 1 0 1 0 1 1 1 1 1\n"
+                   "        </DataArray>\n"
+                   "      </Points>\n"
+                   "      <Polys>\n"
+                   "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n"
+                   "          0 2 3 1\n          4 5 7 6\n          0 1 5 4\n"
+                   "          2 6 7 3\n          0 4 6 2\n          1 3 7 5\n"
+                   "        </DataArray>\n"
+                   "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n"
+                   "          4 8 12 16 20 24\n"
+                   "        </DataArray>\n"
+                   "      </Polys>\n"
+                   "    </Piece>\n"
+                   "  </PolyData>\n"
+                   "</VTKFile>\n",
                    true, {}});
   return seeds;
 }
