@@ -11,17 +11,53 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <exception>
+#include <fstream>
 #include <string>
 
 namespace armour::geometry {
+namespace {
+
+/// VTK 9.1 believes NumberOfComponents: a corrupt one (e.g. "2147483647") makes vtkXMLReader
+/// spin for minutes naming components, a negative one throws. A surface mesh's arrays have 1 to
+/// 9 components, so refuse others before VTK sees them (found by tests/fuzz).
+void checkComponentCounts(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text(64 * 1024, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  text = text.substr(0, text.find("<AppendedData")); // the XML part only
+  const std::string key = "NumberOfComponents=\"";
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const std::size_t begin = at + key.size();
+    const std::string value = text.substr(begin, text.find('"', begin) - begin);
+    if (value.size() != 1 || value[0] < '1' || value[0] > '9') {
+      core::failInput(path.string(), "NumberOfComponents=\"{}\": expected 1 to 9 (3 for points); the file is "
+                      "corrupt, re-export it from ParaView", value.substr(0, 40));
+    }
+  }
+}
+
+} // namespace
+
 TriangleMesh readVtp(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     core::failInput(path.string(), "cannot open the mesh file; check the path");
   }
+  checkComponentCounts(path);
   VtkMessageCapture messages;
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(path.c_str());
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::exception& e) {
+    // VTK believes the sizes in the XML: NumberOfComponents="-1e308" throws std::length_error
+    // and a huge NumberOfPoints std::bad_alloc out of Update() (found by tests/fuzz).
+    core::failInput(path.string(),
+                    "not a readable VTK XML PolyData file: VTK failed with '{}' (a corrupt size or count in the "
+                    "XML?); re-export it from ParaView",
+                    e.what());
+  }
   vtkPolyData* data = reader->GetOutput();
   if (!messages.text().empty() || data == nullptr) {
     core::failInput(path.string(), "not a readable VTK XML PolyData file; re-export it from ParaView. VTK said: {}",

@@ -64,8 +64,11 @@ void readPlacement(const schema::Block& top, Scene& scene) {
       g.refuse(k, "a grid file gives the points; remove this key or the file");
   } else {
     gs.rows = static_cast<int>(g.integer("rows", 1, "rows up the slope"));
+    // Test presence first: a missing key is a zombie node whose IsScalar() throws YAML::InvalidNode.
     const YAML::Node counts = g.get("units_per_row");
-    if (counts.IsScalar()) {
+    if (!g.has("units_per_row")) {
+      g.failMissing("units_per_row", "units per row: a number or a list repeated cyclically, e.g. [12, 11]");
+    } else if (counts.IsScalar()) {
       gs.unitsPerRow = {static_cast<int>(g.integer("units_per_row", 1, "units per row, or a list repeated cyclically"))};
     } else if (counts.IsSequence() && counts.size() > 0) {
       for (auto v : g.integers("units_per_row", counts.size(), 1, "units per row, e.g. [12, 11]"))
