@@ -95,7 +95,7 @@ constexpr double kValueLipschitz = (1.0 + 1.7320508075688772) * 1.0001;
 /// list is used when it covers this call, and made anew (a full search with margin + slack) when not.
 void probeSamples(const ContactShape& ps, const ContactPose& probe, const ContactShape& ts, const ContactPose& target,
                   double weight, std::uint32_t keyBit, bool flip, double margin, double slack, NearSampleList* list,
-                  PairSampleCache* cache, double& maxOverlap, std::vector<ContactPoint>& out) {
+                  double& maxOverlap, std::vector<ContactPoint>& out) {
   const double sp = probe.scale;
   const double st = target.scale;
   const Mat3& Rp = probe.rotation;
@@ -146,7 +146,7 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     // value can have changed over that distance.
     const double moved = (trel - list->translation).norm() + (Rrel - list->rotation).norm() * ps.radius;
     if (m + kValueLipschitz * moved + 1e-6 * h <= list->reach) {
-      ++cache->reuses;
+      ++list->reuses;
       for (const std::uint32_t i : list->samples) {
         consider(i, Rrel * samples.positions()[i] + trel);
       }
@@ -156,7 +156,7 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
   // A full search, with the reach of the list when one is made.
   const double reach = list != nullptr ? m + slack / st : m;
   if (list != nullptr) {
-    ++cache->searches;
+    ++list->searches;
     list->probe = ps.samples;
     list->target = ts.levelSet;
     list->rotation = Rrel;
@@ -221,9 +221,8 @@ double samplesInLevelSets(const ContactShape& a, const ContactPose& pa, const Co
   const double hA2 = pa.dn * pa.dn, hB2 = pb.dn * pb.dn;
   NearSampleList* listA = cache != nullptr ? &cache->directions[0] : nullptr;
   NearSampleList* listB = cache != nullptr ? &cache->directions[1] : nullptr;
-  probeSamples(a, pa, b, pb, hB2 / (hA2 + hB2), 0u, false, margin, slack, listA, cache, maxOverlap, out);
-  probeSamples(b, pb, a, pa, hA2 / (hA2 + hB2), kReverseSampleBit, true, margin, slack, listB, cache, maxOverlap,
-               out);
+  probeSamples(a, pa, b, pb, hB2 / (hA2 + hB2), 0u, false, margin, slack, listA, maxOverlap, out);
+  probeSamples(b, pb, a, pa, hA2 / (hA2 + hB2), kReverseSampleBit, true, margin, slack, listB, maxOverlap, out);
   return maxOverlap;
 }
 

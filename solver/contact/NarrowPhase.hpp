@@ -95,13 +95,13 @@ struct NearSampleList {
   Vec3 translation = Vec3::Zero();       ///< (target frame, unscaled: m / st)
   double reach = -1.0;                   ///< margin + slack of the search (target frame, unscaled); < 0: none
   std::vector<std::uint32_t> samples;    ///< in the order a full search visits them
+  std::uint32_t searches = 0;            ///< full searches made (counters: reset by the caller)
+  std::uint32_t reuses = 0;              ///< calls served from the list
 };
 
-/// A body pair's two near-sample lists (A's samples in B, B's samples in A) and how often they served.
+/// A body pair's two near-sample lists: A's samples in B, B's samples in A.
 struct PairSampleCache {
   std::array<NearSampleList, 2> directions;
-  std::uint32_t searches = 0; ///< full searches made (both directions counted)
-  std::uint32_t reuses = 0;   ///< directions served from the list
 };
 
 /// The samples of each body inside (or within `margin` of) the other, appended to `out` (A's samples

@@ -266,8 +266,7 @@ std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<c
     const std::uint64_t id = (std::uint64_t{keys[w].first} << 32) | keys[w].second;
     CachedSamples& entry = sampleLists_[id];
     entry.step = step;
-    entry.cache.searches = 0;
-    entry.cache.reuses = 0;
+    for (contact::NearSampleList& direction : entry.cache.directions) direction.searches = direction.reuses = 0;
     lists[w] = &entry.cache;
   }
   if (sampleLists_.size() > lists.size()) {
@@ -278,9 +277,10 @@ std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<c
 
 void World::countSampleLists(const std::vector<contact::PairSampleCache*>& lists) {
   for (const contact::PairSampleCache* list : lists) {
-    if (list != nullptr) {
-      stats_.sampleSearches += list->searches;
-      stats_.sampleListReuses += list->reuses;
+    if (list == nullptr) continue;
+    for (const contact::NearSampleList& direction : list->directions) {
+      stats_.sampleSearches += direction.searches;
+      stats_.sampleListReuses += direction.reuses;
     }
   }
 }

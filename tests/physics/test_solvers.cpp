@@ -58,6 +58,21 @@ WorldSettings settingsFor(ContactSolverKind kind, bool sleep = false) {
   return s;
 }
 
+/// Every body's position, velocity, angular momentum and orientation's w, for bit-for-bit comparisons.
+std::vector<double> stateOf(const World& world) {
+  std::vector<double> out;
+  const auto& b = world.bodies();
+  for (BodyId i = 0; i < b.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      out.push_back(b.position(i)[k]);
+      out.push_back(b.velocity(i)[k]);
+      out.push_back(b.angularMomentumWorld(i)[k]);
+    }
+    out.push_back(b.orientation(i).w());
+  }
+  return out;
+}
+
 class BothSolvers : public ::testing::TestWithParam<ContactSolverKind> {};
 
 std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) { return solverName(info.param); }
@@ -197,16 +212,7 @@ std::pair<std::vector<double>, std::size_t> dropCoreLocs(ContactSolverKind kind,
     world.step();
     reuses += world.lastStep().sampleListReuses;
   }
-  std::vector<double> state;
-  for (BodyId i = 0; i < world.bodies().size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      state.push_back(world.bodies().position(i)[k]);
-      state.push_back(world.bodies().velocity(i)[k]);
-      state.push_back(world.bodies().angularMomentumWorld(i)[k]);
-    }
-    state.push_back(world.bodies().orientation(i).w());
-  }
-  return {state, reuses};
+  return {stateOf(world), reuses};
 }
 
 TEST_P(BothSolvers, NearSampleListsLeaveTheStateBitIdentical) {
@@ -285,19 +291,7 @@ struct Pile : CubeScene {
       }
     }
   }
-  [[nodiscard]] std::vector<double> state() const {
-    std::vector<double> out;
-    const auto& b = world.bodies();
-    for (BodyId i = 0; i < b.size(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        out.push_back(b.position(i)[k]);
-        out.push_back(b.velocity(i)[k]);
-        out.push_back(b.angularMomentumWorld(i)[k]);
-      }
-      out.push_back(b.orientation(i).w());
-    }
-    return out;
-  }
+  [[nodiscard]] std::vector<double> state() const { return stateOf(world); }
 };
 
 std::vector<double> runPile(int threads) {

@@ -42,6 +42,9 @@ Shape makeShape(const std::string& name) {
   return s;
 }
 
+std::uint32_t searches(const PairSampleCache& c) { return c.directions[0].searches + c.directions[1].searches; }
+std::uint32_t reuses(const PairSampleCache& c) { return c.directions[0].reuses + c.directions[1].reuses; }
+
 ContactPose pose(const Vec3& x, const Quat& q, double scale) {
   ContactPose p;
   p.position = x;
@@ -91,8 +94,8 @@ void walk(const std::string& nameA, const std::string& nameB, double scaleB) {
   }
   // The walk touched (else it proves nothing), and the lists both served and were made anew.
   EXPECT_GT(points, 600u);
-  EXPECT_GT(cache.reuses, 200u);
-  EXPECT_GT(cache.searches, 20u);
+  EXPECT_GT(reuses(cache), 200u);
+  EXPECT_GT(searches(cache), 20u);
 }
 
 TEST(NearSampleLists, CoreLocOnCoreLocFindsTheFullSearchsPointsBitForBit) { walk("coreloc", "coreloc", 1.0); }
@@ -108,12 +111,12 @@ TEST(NearSampleLists, AListMadeForOtherShapesIsNotUsed) {
   PairSampleCache cache;
   std::vector<ContactPoint> first, second, full;
   armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, 0.0, first, &cache, 0.05);
-  ASSERT_EQ(cache.searches, 2u);
+  ASSERT_EQ(searches(cache), 2u);
   // Same poses, the second body now another shape: the lists must be made anew, not reused.
   armour::contact::samplesInLevelSets(A.view, pa, C.view, pb, 0.0, second, &cache, 0.05);
   armour::contact::samplesInLevelSets(A.view, pa, C.view, pb, 0.0, full);
-  EXPECT_EQ(cache.searches, 4u);
-  EXPECT_EQ(cache.reuses, 0u);
+  EXPECT_EQ(searches(cache), 4u);
+  EXPECT_EQ(reuses(cache), 0u);
   expectSamePoints(full, second, 0);
 }
 
