@@ -14,9 +14,11 @@
 ///  2. the point farthest from it in the patch's tangent plane;
 ///  3. the point that makes the largest triangle with 1 and 2;
 ///  4. the point on the other side of the line 1-2 that makes the largest triangle with 1 and 2.
-/// The patch normal is the area-weighted mean normal of its points; each kept point keeps its own
-/// position, key and depth measured along that normal, and the tributary area of the penetrating
-/// samples nearest to it in the tangent plane (with its own as the least). Ties go to the lower key, so the reduction
+/// The patch normal is the area-weighted mean normal of its points (for the tangent plane). Each
+/// kept point keeps its key, position and normal, and stands for the samples nearest to it in the
+/// tangent plane: their tributary area (its own as the least) and, if any of them is inside, their
+/// penalty force, as its depth: their mean overlap over that area. A kept point none of whose
+/// samples is inside keeps its own gap (speculative). Ties go to the lower key, so the reduction
 /// depends only on the points and the previous step's keys, never on the thread count. Points kept
 /// in the previous step are preferred within a tolerance (ReductionSettings::keepDepth, keepFactor),
 /// so that the warm start finds them again.
@@ -49,7 +51,10 @@ struct ContactPatchPoints {
   std::uint32_t keys[4] = {0, 0, 0, 0};
   Vec3 points[4];                    ///< world (unit: m)
   Vec3 normals[4];                   ///< each kept sample's own normal (unit: -)
-  double depths[4] = {0, 0, 0, 0};   ///< along `normal`, > 0 penetrating (unit: m)
+  /// > 0 penetrating (unit: m): the mean overlap of the samples the point stands for, weighted by
+  /// their areas (sum a_i max(d_i, 0) / areas[k]), or the point's own (negative) gap if none of
+  /// them is inside.
+  double depths[4] = {0, 0, 0, 0};
   /// Tributary area each kept point stands for (unit: m^2): its own, plus that of every
   /// sample of the patch nearer to it than to the other kept points, weighted from 1 inside the
   /// other body to 0 at the gap rampDepth (ReductionSettings), so that the points' springs

@@ -64,10 +64,11 @@ void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodi
     ConstraintPoint& p = c.points[k];
     p.normalMass = effectiveMass(a, b, p.rA, p.rB, p.normal);
     p.softness = makeSoftness(p.stiffness, c.dampingRatio, p.normalMass, h);
-    const double tangentMass = std::min(p.tangentMass[0], p.tangentMass[1]);
-    p.tangentSoftness = makeSoftness(p.tangentStiffness, c.dampingRatio, tangentMass, h);
     p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, p.tangent1);
     p.tangentMass[1] = effectiveMass(a, b, p.rA, p.rB, p.tangent2);
+    // The friction spring's softness from the smaller of the two tangent masses (computed first:
+    // a zero mass would turn the spring off).
+    p.tangentSoftness = makeSoftness(p.tangentStiffness, c.dampingRatio, std::min(p.tangentMass[0], p.tangentMass[1]), h);
     p.maxNormalImpulse = 0.0;
     p.approachSpeed = p.normal.dot(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
   }

@@ -178,7 +178,6 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
     // kept point stands for.
     const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
     const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
-    const double tangentRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
     const auto samplePosition = [&](BodyId owner, std::uint32_t sample) {
       const ShapeModel& shape = *shapes_[bodyShape_[owner]];
       if (sample >= shape.samples->size()) return Vec3(Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
@@ -202,7 +201,11 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
         p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
         p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
         p.stiffness = modulus * patch.areas[k] / lengthScale;
-        p.tangentStiffness = tangentRatio * p.stiffness;
+        // No friction springs (ours, measured): until session 14 their softness was made before
+        // the tangent mass and so was always off; turned on, small Dolos piles crept up to 2.6 mm
+        // per 10 s against 0.004 mm without (docs/benchmarks.md, "Kept points carry their
+        // samples' force"). Friction is the velocity-level Coulomb constraint alone.
+        p.tangentStiffness = 0.0;
         const contact::PointHistory* old = detail::findHistory(previous, p.key);
         if (old == nullptr && previous != nullptr) {
           // A point new to the reduction takes over the nearest point of the previous step's

@@ -6,6 +6,7 @@
 //   bench_solver armour-layer [--units 242] [--rocks 3436] [--threads 1,2] [--seconds S]
 //   bench_solver all [--quick]     (the whole matrix as markdown tables; scripts/bench-solver)
 //   bench_solver contact-models [--pile N] [--seconds S]   (level set vs fdem, docs/fidelity.md)
+//   bench_solver at-rest [--shape dolos] [--units 3] [--scenes 8]   (do small piles come to rest?)
 //
 // A pile is deposited in place (a loose random pile built geometrically, unit by unit, so that it
 // forms in 0.1 s of simulated time instead of the seconds a drop through metres needs: 4000 units
@@ -24,6 +25,7 @@
 // load). This file holds the command line.
 
 #include "benchmarks/SolverBenchArmourLayer.hpp"
+#include "benchmarks/SolverBenchAtRest.hpp"
 #include "benchmarks/SolverBenchCase.hpp"
 #include "benchmarks/SolverBenchPile.hpp"
 #include "benchmarks/SolverBenchReport.hpp"
@@ -47,6 +49,7 @@
 
 namespace {
 
+using armour::bench::AtRestOptions;
 using armour::bench::CaseResult;
 using armour::bench::InvalidCase;
 using armour::bench::LayerOptions;
@@ -56,6 +59,7 @@ using armour::bench::printLayerTable;
 using armour::bench::printLinearity;
 using armour::bench::printPileSettings;
 using armour::bench::printPileTable;
+using armour::bench::runAtRest;
 using armour::bench::runLayer;
 using armour::bench::runPile;
 using armour::bench::wallNow;
@@ -305,6 +309,17 @@ int main(int argc, char** argv) {
                         "penalty modulus (Pa; default 1e10: at 1e9 the dropped pile's impacts reach the depth of the "
                         "fdem surface elements' centroids, the fdem guard rail)");
 
+  AtRestOptions atRest;
+  auto* restCmd = app.add_subcommand("at-rest", "small piles dropped on a floor: do they come to rest? (sleeping off)");
+  restCmd->add_option("--shape", atRest.shape, "a shape of the library, e.g. dolos, coreloc, accropode, cube");
+  restCmd->add_option("--units", atRest.units, "units per scene")->check(CLI::PositiveNumber);
+  restCmd->add_option("--scenes", atRest.scenes, "scenes, each with its own seed")->check(CLI::PositiveNumber);
+  restCmd->add_option("--settle", atRest.settle, "simulated time before the window (s)")->check(CLI::PositiveNumber);
+  restCmd->add_option("--window", atRest.window, "measured simulated time (s)")->check(CLI::PositiveNumber);
+  restCmd->add_option("--seed", atRest.seed, "scene k is seeded seed + k");
+  restCmd->add_option("--friction", atRest.friction, "Coulomb friction (-)");
+  restCmd->add_option("--restitution", atRest.restitution, "coefficient of restitution (-)");
+
   CLI11_PARSE(app, argc, argv);
   armour::bench::setBenchSolver(solver == "constraint" ? armour::simulation::ContactSolverKind::Constraint
                                                        : armour::simulation::ContactSolverKind::Penalty);
@@ -314,6 +329,9 @@ int main(int argc, char** argv) {
   try {
     if (modelsCmd->parsed()) {
       return runContactModels(modelsPile, modelsSeconds, modelsPileSeconds, modelsPenalty);
+    }
+    if (restCmd->parsed()) {
+      return runAtRest(atRest) == 0 ? 0 : 4;
     }
     if (pileCmd->parsed()) {
       pile.threads = parseThreads(pile.threads);
