@@ -80,15 +80,20 @@ def vector_plot(units, h, v, xlabel, ylabel, title, out, swl=None):
 
 
 def write_paraview_state(path, pvd):
-    """A ParaView Python state: the run's bodies.pvd coloured by displacement magnitude, the time
-    slider on the frames' times. Written as text; ParaView is not needed to write it."""
+    """A ParaView Python state: the run's bodies.pvd coloured by displacement magnitude (and its
+    fixed_bodies.vtp in grey, if there is one), the time slider on the frames' times. Written as text; ParaView is not needed to write it."""
     text = f"""# ParaView Python state of an armour damage report (docs/report.md).
 # Load with File > Load State (state file type: Python state), or run: paraview --state=paraview_state.py
+import os
 from paraview.simple import *  # noqa: F401,F403
 
 bodies = PVDReader(FileName={str(pvd)!r})
 RenameSource("bodies", bodies)
 view = GetActiveViewOrCreate("RenderView")
+if os.path.exists({str(pvd.with_name("fixed_bodies.vtp"))!r}):  # the fixed bodies, written once
+    fixed = XMLPolyDataReader(FileName=[{str(pvd.with_name("fixed_bodies.vtp"))!r}])
+    RenameSource("fixed bodies", fixed)
+    Show(fixed, view).DiffuseColor = [0.6, 0.6, 0.6]
 display = Show(bodies, view)
 ColorBy(display, ("POINTS", "displacement", "Magnitude"))
 display.SetScalarBarVisibility(view, True)

@@ -45,6 +45,9 @@ struct BodySnapshot {
   /// that receives the frame. nullptr: the body is left out of the VTK frame.
   const geometry::TriangleMesh* surface = nullptr;
   double scale = 1.0;                                          ///< uniform scale of `surface` (unit: -)
+  /// For VtkFrameWriter only: the body never moves (a scene body with `fixed: true`), so its
+  /// surface is written once, not in every frame.
+  bool fixed = false;
 };
 
 /// All bodies at one output time. BodySeriesFile wants the same bodies in the same order every

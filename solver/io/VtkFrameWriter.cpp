@@ -20,6 +20,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <charconv>
+#include <map>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -101,6 +102,80 @@ void put3(double* to, const geometry::Vec3& v) {
   to[2] = v.z();
 }
 
+/// The bodies' surfaces in the world with body_id, and with `motion` the motion arrays
+/// (displacements from `reference`). `vertices`: staging, reused.
+vtkSmartPointer<vtkPolyData> surfaces(const std::vector<const BodySnapshot*>& bodies, bool motion,
+                                      const std::map<std::int32_t, geometry::Vec3>& reference,
+                                      std::vector<geometry::Vec3>& vertices) {
+  std::size_t vertexCount = 0, triangleCount = 0;
+  for (const BodySnapshot* b : bodies) {
+    vertexCount += b->surface->vertexCount();
+    triangleCount += b->surface->triangleCount();
+  }
+  // Geometry: every body's surface moved to the world, p = x + R (s p_body).
+  vertices.clear();
+  vertices.reserve(vertexCount);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(static_cast<vtkIdType>(triangleCount + 1));
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(3 * triangleCount));
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkIdType* corner = connectivity->GetPointer(0);
+  const auto nv = static_cast<vtkIdType>(vertexCount);
+  auto bodyId = intArray("body_id", nv);
+  // The motion arrays (not for fixed bodies, whose file is written once).
+  const vtkIdType nm = motion ? nv : 0;
+  auto velocity = doubleArray("velocity", 3, nm);
+  auto speed = doubleArray("speed", 1, nm);
+  auto angular = doubleArray("angular_velocity", 3, nm);
+  auto contactCount = intArray("contact_count", nm);
+  auto maxForce = doubleArray("max_contact_force", 1, nm);
+  auto displacement = doubleArray("displacement", 3, nm);
+  auto hydroForce = doubleArray("hydro_force", 3, nm);
+  vtkIdType triangle = 0;
+  *offset++ = 0;
+  for (const BodySnapshot* b : bodies) {
+    const auto first = static_cast<vtkIdType>(vertices.size());
+    const geometry::Mat3 rotation = b->orientation.toRotationMatrix();
+    for (const auto& p : b->surface->vertices) {
+      vertices.push_back(b->position + rotation * (b->scale * p));
+    }
+    for (const auto& t : b->surface->triangles) {
+      for (const auto c : t) {
+        *corner++ = first + c;
+      }
+      *offset++ = 3 * ++triangle;
+    }
+    // Point data: per-body values repeated on its vertices. Point rather than cell data because
+    // a closed surface has about twice as many triangles as vertices; zlib absorbs the repeats.
+    const geometry::Vec3 moved = b->position - reference.at(b->id);
+    const double bodySpeed = b->velocity.norm();
+    for (auto i = first; i < static_cast<vtkIdType>(vertices.size()); ++i) {
+      bodyId->SetValue(i, b->id);
+      if (!motion) continue;
+      put3(velocity->GetPointer(3 * i), b->velocity);
+      speed->SetValue(i, bodySpeed);
+      put3(angular->GetPointer(3 * i), b->angularVelocity);
+      contactCount->SetValue(i, b->contactCount);
+      maxForce->SetValue(i, b->maxContactForce);
+      put3(displacement->GetPointer(3 * i), moved);
+      put3(hydroForce->GetPointer(3 * i), b->externalForce);
+    }
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->SetData(offsets, connectivity);
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(geometry::toVtkPoints(vertices));
+  data->SetPolys(polys);
+  data->GetPointData()->AddArray(bodyId);
+  if (motion) {
+    for (vtkDataArray* a : std::initializer_list<vtkDataArray*>{velocity, speed, angular, contactCount, maxForce,
+                                                               displacement, hydroForce}) {
+      data->GetPointData()->AddArray(a);
+    }
+  }
+  return data;
+}
+
 } // namespace
 
 std::vector<CollectionEntry> readCollection(const std::filesystem::path& pvd) {
@@ -162,6 +237,7 @@ VtkFrameWriter::VtkFrameWriter(VtkFrameSettings settings) : settings_(std::move(
   // A fresh run: an earlier run's collections would name files that are about to be replaced.
   std::error_code ignored;
   std::filesystem::remove(collectionPath(), ignored);
+  std::filesystem::remove(fixedPath(), ignored);
   std::filesystem::remove(contactCollectionPath(), ignored);
   removeFramesFrom(settings_.folder / kBodies, 0);
   removeFramesFrom(settings_.folder / kContacts, 0);
@@ -233,78 +309,39 @@ void VtkFrameWriter::setReferencePosition(std::int32_t id, const geometry::Vec3&
   reference_[id] = position;
 }
 
+void VtkFrameWriter::writeFixed(const std::vector<const BodySnapshot*>& fixed) {
+  std::vector<std::int32_t> ids;
+  for (const BodySnapshot* b : fixed) ids.push_back(b->id);
+  if (fixedWritten_ && ids == fixedIds_) {
+    return;
+  }
+  const auto path = fixedPath();
+  if (fixed.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  } else {
+    vtkSmartPointer<vtkPolyData> data = surfaces(fixed, false, reference_, vertices_);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    geometry::writeVtkXmlAtomically(*writer, data, path);
+  }
+  fixedIds_ = std::move(ids);
+  fixedWritten_ = true;
+}
+
 void VtkFrameWriter::write(const BodyFrame& frame, std::span<const ContactPoint> contacts) {
   if (!entries_.empty() && !(frame.time > entries_.back().time)) {
     throw std::logic_error(
         fmt::format("VtkFrameWriter::write: time {} s does not follow {} s", frame.time, entries_.back().time));
   }
-  std::size_t vertexCount = 0, triangleCount = 0;
+  std::vector<const BodySnapshot*> moving, fixed;
   for (const auto& b : frame.bodies) {
-    if (b.surface != nullptr) {
-      vertexCount += b.surface->vertexCount();
-      triangleCount += b.surface->triangleCount();
-    }
     reference_.try_emplace(b.id, b.position);
+    if (b.surface != nullptr) (b.fixed ? fixed : moving).push_back(&b);
   }
-
-  // Geometry: every body's surface moved to the world, p = x + R (s p_body).
-  vertices_.clear();
-  vertices_.reserve(vertexCount);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfTuples(static_cast<vtkIdType>(triangleCount + 1));
-  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(3 * triangleCount));
-  vtkIdType* offset = offsets->GetPointer(0);
-  vtkIdType* corner = connectivity->GetPointer(0);
-  const auto nv = static_cast<vtkIdType>(vertexCount);
-  auto bodyId = intArray("body_id", nv);
-  auto velocity = doubleArray("velocity", 3, nv);
-  auto speed = doubleArray("speed", 1, nv);
-  auto angular = doubleArray("angular_velocity", 3, nv);
-  auto contactCount = intArray("contact_count", nv);
-  auto maxForce = doubleArray("max_contact_force", 1, nv);
-  auto displacement = doubleArray("displacement", 3, nv);
-  auto hydroForce = doubleArray("hydro_force", 3, nv);
-  vtkIdType triangle = 0;
-  *offset++ = 0;
-  for (const auto& b : frame.bodies) {
-    if (b.surface == nullptr) {
-      continue;
-    }
-    const auto first = static_cast<vtkIdType>(vertices_.size());
-    const geometry::Mat3 rotation = b.orientation.toRotationMatrix();
-    for (const auto& p : b.surface->vertices) {
-      vertices_.push_back(b.position + rotation * (b.scale * p));
-    }
-    for (const auto& t : b.surface->triangles) {
-      for (const auto c : t) {
-        *corner++ = first + c;
-      }
-      *offset++ = 3 * ++triangle;
-    }
-    // Point data: per-body values repeated on its vertices. Point rather than cell data because
-    // a closed surface has about twice as many triangles as vertices; zlib absorbs the repeats.
-    const geometry::Vec3 moved = b.position - reference_.at(b.id);
-    const double bodySpeed = b.velocity.norm();
-    for (auto i = first; i < static_cast<vtkIdType>(vertices_.size()); ++i) {
-      bodyId->SetValue(i, b.id);
-      put3(velocity->GetPointer(3 * i), b.velocity);
-      speed->SetValue(i, bodySpeed);
-      put3(angular->GetPointer(3 * i), b.angularVelocity);
-      contactCount->SetValue(i, b.contactCount);
-      maxForce->SetValue(i, b.maxContactForce);
-      put3(displacement->GetPointer(3 * i), moved);
-      put3(hydroForce->GetPointer(3 * i), b.externalForce);
-    }
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(geometry::toVtkPoints(vertices_));
-  data->SetPolys(polys);
-  for (vtkDataArray* a : std::initializer_list<vtkDataArray*>{bodyId, velocity, speed, angular, contactCount, maxForce,
-                                                             displacement, hydroForce}) {
-    data->GetPointData()->AddArray(a);
-  }
+  // Fixed bodies (an underlayer's thousands of rocks) go once into their own file, not into every
+  // frame: it is rewritten only if the set of fixed bodies changes.
+  writeFixed(fixed);
+  vtkSmartPointer<vtkPolyData> data = surfaces(moving, true, reference_, vertices_);
 
   // Field data: the time (ParaView shows "TimeValue" when one file is opened on its own) and the
   // displacement reference of every body seen so far, so that a resumed run measures from t = 0.

@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file VtkFrameWriter.hpp
-/// Snapshots for ParaView: every output frame, one VTK XML PolyData file with the surfaces of all
-/// bodies in world coordinates and per-body point data, listed in a ParaView collection (.pvd)
-/// that is rewritten after each frame. Optionally the contact points and forces, likewise.
+/// Snapshots for ParaView: every output frame, one VTK XML PolyData file with the surfaces of the
+/// moving bodies in world coordinates and per-body point data, listed in a ParaView collection
+/// (.pvd) that is rewritten after each frame; the fixed bodies (BodySnapshot::fixed: an
+/// underlayer's rocks) once, in fixed_bodies.vtp. Optionally the contact points and forces, likewise.
 ///
 /// Layout in the output folder (docs/output-files.md):
 ///   bodies.pvd                 collection: <DataSet timestep="t" file="bodies/frame_000012.vtp"/>
 ///   bodies/frame_000012.vtp    surfaces, point data body_id, velocity, speed, angular_velocity,
 ///                              contact_count, max_contact_force, displacement
+///   fixed_bodies.vtp           surfaces of the fixed bodies, point data body_id; written at the
+///                              first frame and again only if the set of fixed bodies changes
 ///   contacts.pvd, contacts/frame_000012.vtp   (with contacts = true)
 ///
 /// Every file is written to a temporary sibling and renamed into place, the frame before the
@@ -70,8 +73,8 @@ public:
   /// folder if it cannot be created, or naming a file that cannot be read back on resume.
   explicit VtkFrameWriter(VtkFrameSettings settings);
 
-  /// Write one frame: vertices p = x + q (s p_body) of every body with a surface, its point
-  /// data, then the updated collection(s). Contacts are written only with settings.contacts.
+  /// Write one frame: vertices p = x + q (s p_body) of every moving body with a surface, its point
+  /// data, then the updated collection(s); fixed bodies go to fixed_bodies.vtp (writeFixed). Contacts are written only with settings.contacts.
   /// A body seen for the first time has its position taken as its displacement reference.
   /// @pre frame.time greater than the previous frame's (std::logic_error otherwise); unit
   ///      quaternions.
@@ -87,9 +90,13 @@ public:
   [[nodiscard]] const std::vector<CollectionEntry>& entries() const { return entries_; }
   [[nodiscard]] std::filesystem::path collectionPath() const { return settings_.folder / "bodies.pvd"; }
   [[nodiscard]] std::filesystem::path contactCollectionPath() const { return settings_.folder / "contacts.pvd"; }
+  [[nodiscard]] std::filesystem::path fixedPath() const { return settings_.folder / "fixed_bodies.vtp"; }
 
 private:
   void resume(double time);
+  /// fixed_bodies.vtp, if this writer has not written it yet or the set of fixed bodies changed
+  /// (removed if there are none).
+  void writeFixed(const std::vector<const BodySnapshot*>& fixed);
 
   VtkFrameSettings settings_;
   std::vector<CollectionEntry> entries_;
@@ -97,6 +104,8 @@ private:
   std::size_t nextIndex_ = 0;
   std::map<std::int32_t, geometry::Vec3> reference_; ///< first position of each body (unit: m)
   std::vector<geometry::Vec3> vertices_;             ///< staging, reused frame to frame
+  std::vector<std::int32_t> fixedIds_;               ///< the fixed bodies in fixed_bodies.vtp
+  bool fixedWritten_ = false;
 };
 
 /// Read a .pvd collection written by VtkFrameWriter (DataSet elements, in file order).

@@ -134,6 +134,7 @@ io::BodyFrame RunOutputs::frame(const World& world) const {
     s.externalForce = world.externalForce(b);
     s.surface = &world.shape(world.bodyShape(b)).mesh; // body (principal) frame, like the orientation
     s.scale = world.bodyScale(b);
+    s.fixed = scene_.bodies[i].fixed;
     f.bodies.push_back(s);
   }
   return f;

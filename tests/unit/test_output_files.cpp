@@ -351,6 +351,60 @@ TEST_F(OutputFiles, VtkFreshStartClearsAnEarlierRun) {
   EXPECT_EQ(collectionByVtk(dir_ / "bodies.pvd").size(), 1u);
 }
 
+TEST_F(OutputFiles, VtkFixedBodiesAreWrittenOnceBesideTheFrames) {
+  // Two fixed bodies (an underlayer's rocks) beside the three moving cubes: the frames hold the
+  // moving ones only, fixed_bodies.vtp the fixed ones at their exact world vertices, written at the
+  // first frame and not again while the fixed set stays the same; a changed set rewrites it, and a
+  // fresh writer removes an earlier run's.
+  const auto withFixed = [&](int k, int fixedCount) {
+    BodyFrame f = motion_.frame(k);
+    for (int i = 0; i < fixedCount; ++i) {
+      BodySnapshot b;
+      b.id = 20 + i;
+      b.position = Vec3(-4.0 + 2.5 * i, 1.25, -0.5);
+      b.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7 + i, Vec3(0.0, 1.0, 1.0).normalized()));
+      b.surface = &motion_.cube();
+      b.scale = 1.5;
+      b.fixed = true;
+      f.bodies.push_back(b);
+    }
+    return f;
+  };
+  const fs::path fixedFile = dir_ / "fixed_bodies.vtp";
+  {
+    VtkFrameWriter writer(vtkSettings(dir_));
+    writer.write(withFixed(0, 2));
+    ASSERT_TRUE(fs::is_regular_file(fixedFile));
+    auto fixed = readPolyData(fixedFile);
+    const auto nv = static_cast<vtkIdType>(motion_.cube().vertexCount());
+    ASSERT_EQ(fixed->GetNumberOfPoints(), 2 * nv);
+    EXPECT_EQ(fixed->GetNumberOfPolys(), 2 * static_cast<vtkIdType>(motion_.cube().triangleCount()));
+    const BodyFrame f = withFixed(0, 2);
+    for (int i = 0; i < 2; ++i) {
+      const BodySnapshot& b = f.bodies[static_cast<std::size_t>(kBodies + i)];
+      for (vtkIdType v = 0; v < nv; v += 3) {
+        double p[3];
+        fixed->GetPoint(i * nv + v, p);
+        const Vec3 expected = b.position + b.orientation.toRotationMatrix() * (b.scale * motion_.cube().vertices[v]);
+        EXPECT_EQ(std::vector<double>(p, p + 3), components(expected));
+        EXPECT_EQ(fixed->GetPointData()->GetArray("body_id")->GetTuple1(i * nv + v), b.id);
+      }
+    }
+    EXPECT_EQ(fixed->GetPointData()->GetArray("displacement"), nullptr) << "no motion arrays for fixed bodies";
+    expectBodiesFrame(dir_ / "bodies" / "frame_000000.vtp", motion_, 0); // the moving cubes only
+
+    fs::remove(fixedFile);
+    writer.write(withFixed(1, 2));
+    EXPECT_FALSE(fs::exists(fixedFile)) << "the same fixed bodies are not written again";
+    writer.write(withFixed(2, 1));
+    ASSERT_TRUE(fs::is_regular_file(fixedFile)) << "a changed set of fixed bodies is written";
+    EXPECT_EQ(readPolyData(fixedFile)->GetNumberOfPoints(), static_cast<vtkIdType>(motion_.cube().vertexCount()));
+    expectBodiesFrame(dir_ / "bodies" / "frame_000002.vtp", motion_, 2);
+  }
+  VtkFrameWriter fresh(vtkSettings(dir_));
+  EXPECT_FALSE(fs::exists(fixedFile)) << "a fresh run removes an earlier run's fixed bodies";
+}
+
 TEST_F(OutputFiles, VtkUnwritableFolderNamesThePath) {
   // A regular file where a folder should be: fails for root too, unlike a permission bit.
   std::ofstream(dir_ / "file") << "x";
