@@ -26,6 +26,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <tuple>
 
 using namespace armour;
 using namespace armour::simulation;
@@ -384,6 +385,59 @@ TEST(ConstraintSolver, SmallPilesOfConcaveUnitsOnAFloorComeToRest) {
         }
       }
       EXPECT_LT(largest, 1e-3) << name << " scene " << seed << ": a unit still moves after 30 s (J)";
+    }
+  }
+}
+
+TEST(Restitution, EdgeAndCornerDropsReboundWithTheTargetRestitution) {
+  // Issue 23 item 10: a unit cube dropped at 3.1 m/s on an edge (turned 45 degrees about x) and on a
+  // corner (its diagonal vertical), the centre of mass above the contact, so that rigid-body
+  // impact theory gives the centre's rebound speed as e times its impact speed, as for a face drop.
+  // For each contact model and solver, within the face test's 0.05 of e; the fdem corner within
+  // 0.07 (measured in session 14: 0.434 at e = 0.5, the only case off by more than 0.05; its
+  // corner and edge contacts stiffen with depth, which the dashpot's e-to-damping relation, made
+  // for a constant stiffness, does not know: docs/validation.md, "Restitution at edges and corners").
+  struct Case {
+    const char* name;
+    ContactSolverKind solver;
+    ContactModel model;
+  };
+  const Case cases[] = {{"penalty, level set", ContactSolverKind::Penalty, ContactModel::LevelSet},
+                        {"penalty, fdem", ContactSolverKind::Penalty, ContactModel::Fdem},
+                        {"constraint", ContactSolverKind::Constraint, ContactModel::LevelSet}};
+  const Quat edge(Eigen::AngleAxisd(0.25 * std::numbers::pi, Vec3::UnitX()));
+  const Quat corner = Quat::FromTwoVectors(Vec3(1.0, 1.0, 1.0).normalized(), -Vec3::UnitZ());
+  for (const Case& c : cases) {
+    for (const double e : {0.05, 0.5, 0.9}) {
+      for (const auto& [what, q, depth] : {std::tuple{"edge", edge, 0.5 * std::numbers::sqrt2},
+                                           std::tuple{"corner", corner, 0.5 * std::numbers::sqrt3}}) {
+        WorldSettings settings = settingsFor(c.solver);
+        settings.contactModel = c.model;
+        CubeScene s(concrete(e, 0.5), settings);
+        s.addFloor();
+        const BodyId b = s.addCube(Vec3(0, 0, depth + 0.5), q); // the lowest edge or corner 0.5 m up
+        double impact = 0.0, rebound = 0.0, tContact = -1.0;
+        while (s.world.time() < 1.5) {
+          const double vz = s.world.bodies().velocity(b).z();
+          s.world.step();
+          if (tContact < 0.0 && s.world.lastStep().contactPoints > 0 && s.world.bodies().velocity(b).z() > vz) {
+            tContact = s.world.time();
+            impact = -vz;
+          }
+          if (tContact >= 0.0) {
+            // The largest upward speed over 0.2 s: at separation (a corner contact lasts longer
+            // than a face contact), before gravity slows the rebound.
+            rebound = std::max(rebound, s.world.bodies().velocity(b).z());
+            if (s.world.time() > tContact + 0.2) break;
+          }
+        }
+        ASSERT_GT(impact, 3.0) << c.name << ", " << what << ", e = " << e;
+        const double tolerance = c.model == ContactModel::Fdem && std::string(what) == "corner" ? 0.07 : 0.05;
+        EXPECT_NEAR(rebound / impact, e, tolerance) << c.name << ", " << what << ", e = " << e;
+        RecordProperty(std::string(c.model == ContactModel::Fdem ? "fdem_" : "") + solverName(c.solver) + "_" + what +
+                           "_e" + std::to_string(static_cast<int>(100 * e)),
+                       std::to_string(rebound / impact));
+      }
     }
   }
 }
