@@ -81,7 +81,8 @@ def vector_plot(units, h, v, xlabel, ylabel, title, out, swl=None):
 
 def write_paraview_state(path, pvd):
     """A ParaView Python state: the run's bodies.pvd coloured by displacement magnitude (and its
-    fixed_bodies.vtp in grey, if there is one), the time slider on the frames' times. Written as text; ParaView is not needed to write it."""
+    fixed_bodies.vtp in grey, if there is one), the time slider on the frames' times. Written as
+    text; ParaView is not needed to write it."""
     text = f"""# ParaView Python state of an armour damage report (docs/report.md).
 # Load with File > Load State (state file type: Python state), or run: paraview --state=paraview_state.py
 import os

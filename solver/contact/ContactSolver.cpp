@@ -66,9 +66,6 @@ void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodi
     p.softness = makeSoftness(p.stiffness, c.dampingRatio, p.normalMass, h);
     p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, p.tangent1);
     p.tangentMass[1] = effectiveMass(a, b, p.rA, p.rB, p.tangent2);
-    // The friction spring's softness from the smaller of the two tangent masses (computed first:
-    // a zero mass would turn the spring off).
-    p.tangentSoftness = makeSoftness(p.tangentStiffness, c.dampingRatio, std::min(p.tangentMass[0], p.tangentMass[1]), h);
     p.maxNormalImpulse = 0.0;
     p.approachSpeed = p.normal.dot(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
   }
@@ -115,18 +112,8 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
       ConstraintPoint& p = c.points[k];
       const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
       const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
-      double bias0 = 0.0, bias1 = 0.0, massScale = 1.0, impulseScale = 0.0;
-      if (useBias && !p.sliding && p.tangentStiffness > 0.0) {
-        // The friction spring pulls the point back to where it stuck.
-        const Vec3 moved = dp + pair.a->dq * p.rA - pair.b->dq * p.rB - (p.rA - p.rB);
-        const Vec3 stretch = p.stretch + moved - p.normal.dot(moved) * p.normal;
-        bias0 = p.tangentSoftness.biasRate * p.tangent1.dot(stretch);
-        bias1 = p.tangentSoftness.biasRate * p.tangent2.dot(stretch);
-        massScale = p.tangentSoftness.massScale;
-        impulseScale = p.tangentSoftness.impulseScale;
-      }
-      double t0 = old0 - p.tangentMass[0] * massScale * (p.tangent1.dot(vr) + bias0) - impulseScale * old0;
-      double t1 = old1 - p.tangentMass[1] * massScale * (p.tangent2.dot(vr) + bias1) - impulseScale * old1;
+      double t0 = old0 - p.tangentMass[0] * p.tangent1.dot(vr);
+      double t1 = old1 - p.tangentMass[1] * p.tangent2.dot(vr);
       const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
       const double length = std::sqrt(t0 * t0 + t1 * t1);
       p.slides = length > limit;
@@ -140,18 +127,6 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
       pair.apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p.rA, p.rB);
     }
   }
-}
-
-Vec3 endStretch(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies, double h) {
-  if (p.slides || !(p.tangentStiffness > 0.0)) {
-    // Sliding: the spring holds the Coulomb force, so that sticking again starts from it.
-    const Vec3 tau = p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
-    return p.tangentStiffness > 0.0 ? Vec3(-tau / (h * p.tangentStiffness)) : Vec3::Zero();
-  }
-  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-  const Vec3 moved = a.dp - b.dp + a.dq * p.rA - b.dq * p.rB - (p.rA - p.rB);
-  return p.stretch + moved - p.normal.dot(moved) * p.normal;
 }
 
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,

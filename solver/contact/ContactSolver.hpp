@@ -29,13 +29,9 @@
 /// a the point stands for (ContactReduction), c = 2 zeta sqrt(k m_n). A point
 /// whose k m_n^-1 exceeds (pi / (2 h))^2 gets that bound instead (Box2D's cap at a quarter of the
 /// substep rate): stiffer than the substep can resolve, it behaves as rigid with Baumgarte-free push.
-/// Friction: Coulomb, the tangential impulse (t1, t2) clamped to the disk mu lambda, mu = mu_d at a
-/// point that slid in the previous step, mu_s at one that stuck. While it sticks, a point is held
-/// by a soft friction spring k_t = r_t k at the place where it stuck (the penalty law's spring and
-/// stretch s; bias on): the tangential rows aim at v_t = -b_t s(t), with
-/// s(t) = s0 + T (dp_A + dq_A r_A - dp_B - dq_B r_B - (r_A - r_B)), T the tangential projector, so
-/// that velocity errors never add up to a creep; sliding, the stretch is the Coulomb force's,
-/// -tau / (h k_t), as in the penalty law.
+/// Friction: Coulomb, the tangential impulse (t1, t2) += -m_t v_t, clamped to the disk mu lambda,
+/// mu = mu_d at a point that slid in the previous step, mu_s at one that stuck: a velocity-level
+/// constraint without a friction spring (one was tried and crept more: docs/theory.md, "Friction").
 ///
 /// Determinism: serial Gauss-Seidel in constraint order; any thread count gives the same bits.
 
@@ -89,9 +85,6 @@ struct ConstraintPoint {
   double approachSpeed = 0.0;     ///< normal relative velocity at prepare, < 0 approaching (unit: m/s)
   double stiffness = 0.0;         ///< the point's spring E_p a / L, a its tributary area (unit: N/m)
   Softness softness;              ///< of this point's spring (prepareConstraint)
-  double tangentStiffness = 0.0;  ///< the friction spring r_t E_p a / L (unit: N/m)
-  Softness tangentSoftness;       ///< of the friction spring (prepareConstraint)
-  Vec3 stretch = Vec3::Zero();    ///< friction spring's stretch at the step start, tangential, world (unit: m)
   bool sliding = false;           ///< sliding at the end of the last step: mu_d holds it, else mu_s
   bool slides = false;            ///< the friction cap held in the last pass (the next step's `sliding`)
 };
@@ -127,10 +120,6 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
 /// One Gauss-Seidel pass over all constraints. useBias: the solve (true) or the relax (false).
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias);
-
-/// The friction springs' stretch at the end of the step, from the bodies' motion (call after the
-/// last substep, with dp and dq current).
-Vec3 endStretch(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies, double h);
 
 /// Restitution after the substeps (see the file comment).
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,

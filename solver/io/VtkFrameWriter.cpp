@@ -103,7 +103,7 @@ void put3(double* to, const geometry::Vec3& v) {
 }
 
 /// The bodies' surfaces in the world with body_id, and with `motion` the motion arrays
-/// (displacements from `reference`). `vertices`: staging, reused.
+/// (displacements from `reference`, which must hold every body then). `vertices`: staging, reused.
 vtkSmartPointer<vtkPolyData> surfaces(const std::vector<const BodySnapshot*>& bodies, bool motion,
                                       const std::map<std::int32_t, geometry::Vec3>& reference,
                                       std::vector<geometry::Vec3>& vertices) {
@@ -147,11 +147,13 @@ vtkSmartPointer<vtkPolyData> surfaces(const std::vector<const BodySnapshot*>& bo
     }
     // Point data: per-body values repeated on its vertices. Point rather than cell data because
     // a closed surface has about twice as many triangles as vertices; zlib absorbs the repeats.
+    for (auto i = first; i < static_cast<vtkIdType>(vertices.size()); ++i) {
+      bodyId->SetValue(i, b->id);
+    }
+    if (!motion) continue;
     const geometry::Vec3 moved = b->position - reference.at(b->id);
     const double bodySpeed = b->velocity.norm();
     for (auto i = first; i < static_cast<vtkIdType>(vertices.size()); ++i) {
-      bodyId->SetValue(i, b->id);
-      if (!motion) continue;
       put3(velocity->GetPointer(3 * i), b->velocity);
       speed->SetValue(i, bodySpeed);
       put3(angular->GetPointer(3 * i), b->angularVelocity);
@@ -333,9 +335,10 @@ void VtkFrameWriter::write(const BodyFrame& frame, std::span<const ContactPoint>
     throw std::logic_error(
         fmt::format("VtkFrameWriter::write: time {} s does not follow {} s", frame.time, entries_.back().time));
   }
+  // The displacement reference (kept in every frame's field data) holds the moving bodies only.
   std::vector<const BodySnapshot*> moving, fixed;
   for (const auto& b : frame.bodies) {
-    reference_.try_emplace(b.id, b.position);
+    if (!b.fixed) reference_.try_emplace(b.id, b.position);
     if (b.surface != nullptr) (b.fixed ? fixed : moving).push_back(&b);
   }
   // Fixed bodies (an underlayer's thousands of rocks) go once into their own file, not into every

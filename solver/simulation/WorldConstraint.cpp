@@ -201,16 +201,11 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
         p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
         p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
         p.stiffness = modulus * patch.areas[k] / lengthScale;
-        // No friction springs (ours, measured): until session 14 their softness was made before
-        // the tangent mass and so was always off; turned on, small Dolos piles crept up to 2.6 mm
-        // per 10 s against 0.004 mm without (docs/benchmarks.md, "Kept points carry their
-        // samples' force"). Friction is the velocity-level Coulomb constraint alone.
-        p.tangentStiffness = 0.0;
         const contact::PointHistory* old = detail::findHistory(previous, p.key);
         if (old == nullptr && previous != nullptr) {
           // A point new to the reduction takes over the nearest point of the previous step's
-          // (within 0.15 Dn, one and a half sample spacings at the default): the anchor of the
-          // friction spring there is not lost when the reduction picks a neighbouring sample.
+          // (within 0.15 Dn, one and a half sample spacings at the default): its impulses are not
+          // lost when the reduction picks a neighbouring sample.
           old = nearestPreviousPoint(m.key, *previous, patch.points[k], 0.15 * lengthScale, samplePosition);
         }
         if (old != nullptr) {
@@ -218,10 +213,6 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
           p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
           p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
           p.sliding = old->sliding;
-          // The friction spring's stretch, carried into the new tangent plane at its length.
-          const Vec3 flat = old->stretch - p.normal.dot(old->stretch) * p.normal;
-          const double length = flat.norm();
-          p.stretch = length > 0.0 ? Vec3(flat * (old->stretch.norm() / length)) : Vec3::Zero();
           ++warmStarted;
         }
       }
@@ -266,7 +257,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
         const contact::ConstraintPoint& p = k.points[j];
         contact::PointHistory ph;
         ph.sliding = p.slides;
-        ph.stretch = contact::endStretch(k, p, solverBodies_, h);
+        // ph.stretch stays zero: the constraint solver has no friction springs (ContactSolver.hpp).
         ph.normalImpulse = p.normalImpulse;
         ph.tangentImpulse = p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
         history.emplace_back(p.key, ph);

@@ -4,12 +4,12 @@
 #include "benchmarks/SolverBenchReport.hpp"
 #include "benchmarks/SolverBenchScene.hpp"
 #include "geometry/ShapeLibrary.hpp"
+#include "support/FloorPile.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
-#include <random>
 #include <vector>
 
 namespace armour::bench {
@@ -23,27 +23,9 @@ struct SceneResult {
   double cpu = 0.0;    ///< wall time of the scene (unit: s)
 };
 
-double kineticEnergy(const World& w, armour::simulation::BodyId b) {
-  const Vec3 omega = w.bodies().worldAngularVelocity(b);
-  const Eigen::Matrix3d inertia = w.bodies().inverseInertiaWorld(b).inverse();
-  return 0.5 * w.bodies().info(b).mass * w.bodies().velocity(b).squaredNorm() + 0.5 * omega.dot(inertia * omega);
-}
-
 SceneResult runScene(const AtRestOptions& o, ShapeId shape, World& w, std::uint64_t seed) {
   const auto start = std::chrono::steady_clock::now();
-  const MaterialId m = addConcrete(w, o.friction, o.restitution);
-  w.addPlane({"floor", Vec3::Zero(), Vec3::UnitZ(), m});
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (int k = 0; k < o.units; ++k) {
-    BodySpec b;
-    b.shape = shape;
-    b.material = m;
-    // Drop heights 2.2 m apart: clear of each other for units of 1 m^3 in any attitude.
-    b.position = Vec3(0.4 * u(rng), 0.4 * u(rng), 1.2 + 2.2 * k);
-    b.orientation = Quat(Eigen::AngleAxisd(3.0 * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
-    w.addBody(b);
-  }
+  armour::test::dropOnFloor(w, shape, addConcrete(w, o.friction, o.restitution), o.units, seed);
   w.advanceTo(o.settle);
   const auto n = w.bodies().size();
   std::vector<Vec3> p0(n);
@@ -55,7 +37,7 @@ SceneResult runScene(const AtRestOptions& o, ShapeId shape, World& w, std::uint6
   SceneResult r;
   while (w.time() < o.settle + o.window - 1e-9) {
     w.step();
-    for (armour::simulation::BodyId b = 0; b < n; ++b) r.energy = std::max(r.energy, kineticEnergy(w, b));
+    r.energy = std::max(r.energy, armour::test::largestKineticEnergy(w));
   }
   for (armour::simulation::BodyId b = 0; b < n; ++b) {
     r.move = std::max(r.move, (w.bodies().position(b) - p0[b]).norm());

@@ -15,6 +15,7 @@
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/World.hpp"
 #include "support/CubeScene.hpp"
+#include "support/FloorPile.hpp"
 #include "support/ShapeCache.hpp"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,30 @@ std::vector<double> stateOf(const World& world) {
   return out;
 }
 
+/// A drop on the floor, run until `until` (s): the impact speed (the body's downward speed in the
+/// step before the floor first pushed it up) and the largest upward speed within `window` (s) after
+/// that: at separation, before gravity slows the rebound.
+struct Rebound {
+  double impact = 0.0, rebound = 0.0; ///< unit: m/s
+};
+Rebound measureRebound(World& world, BodyId b, double window, double until) {
+  Rebound r;
+  double tContact = -1.0;
+  while (world.time() < until) {
+    const double vz = world.bodies().velocity(b).z();
+    world.step();
+    if (tContact < 0.0 && world.lastStep().contactPoints > 0 && world.bodies().velocity(b).z() > vz) {
+      tContact = world.time();
+      r.impact = -vz;
+    }
+    if (tContact >= 0.0) {
+      r.rebound = std::max(r.rebound, world.bodies().velocity(b).z());
+      if (world.time() > tContact + window) break;
+    }
+  }
+  return r;
+}
+
 class BothSolvers : public ::testing::TestWithParam<ContactSolverKind> {};
 
 std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) { return solverName(info.param); }
@@ -127,19 +152,7 @@ TEST_P(BothSolvers, DropReboundsWithTheTargetRestitution) {
     CubeScene s(concrete(e, 0.5), settingsFor(GetParam()));
     s.addFloor();
     const BodyId b = s.addCube(Vec3(0, 0, 1.0));
-    double impact = 0.0, rebound = 0.0, tContact = -1.0;
-    while (s.world.time() < 2.0) {
-      const double vz = s.world.bodies().velocity(b).z();
-      s.world.step();
-      if (tContact < 0.0 && s.world.lastStep().contactPoints > 0 && s.world.bodies().velocity(b).z() > vz) {
-        tContact = s.world.time();
-        impact = -vz;
-      }
-      if (tContact >= 0.0) {
-        rebound = std::max(rebound, s.world.bodies().velocity(b).z());
-        if (s.world.time() > tContact + 0.05) break;
-      }
-    }
+    const auto [impact, rebound] = measureRebound(s.world, b, 0.05, 2.0);
     ASSERT_GT(impact, 3.0) << "e = " << e;
     RecordProperty("rebound_ratio_e" + std::to_string(static_cast<int>(100 * e)), std::to_string(rebound / impact));
     EXPECT_NEAR(rebound / impact, e, 0.05) << solverName(GetParam()) << ", e = " << e;
@@ -360,29 +373,12 @@ TEST(ConstraintSolver, SmallPilesOfConcaveUnitsOnAFloorComeToRest) {
     for (const unsigned seed : seeds) {
       World w(settingsFor(ContactSolverKind::Constraint));
       const MaterialId m = w.addMaterial(concrete(0.3, 0.75)); // 2400 kg/m^3, as bench_solver's
-      const ShapeId shape = w.addShape(name, armour::test::unitShape(name));
-      w.addPlane({"floor", Vec3::Zero(), Vec3::UnitZ(), m});
-      std::mt19937_64 rng(seed);
-      std::uniform_real_distribution<double> u(-1.0, 1.0);
-      for (int k = 0; k < 3; ++k) {
-        BodySpec b;
-        b.shape = shape;
-        b.material = m;
-        b.position = Vec3(0.4 * u(rng), 0.4 * u(rng), 1.2 + 2.2 * k);
-        b.orientation = Quat(Eigen::AngleAxisd(3.0 * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
-        w.addBody(b);
-      }
+      test::dropOnFloor(w, w.addShape(name, test::unitShape(name)), m, 3, seed);
       w.advanceTo(30.0);
       double largest = 0.0;
       while (w.time() < 40.0 - 1e-9) {
         w.step();
-        for (BodyId b = 0; b < w.bodies().size(); ++b) {
-          const Vec3 omega = w.bodies().worldAngularVelocity(b);
-          const Eigen::Matrix3d inertia = w.bodies().inverseInertiaWorld(b).inverse();
-          const double energy = 0.5 * w.bodies().info(b).mass * w.bodies().velocity(b).squaredNorm() +
-                                0.5 * omega.dot(inertia * omega);
-          largest = std::max(largest, energy);
-        }
+        largest = std::max(largest, test::largestKineticEnergy(w));
       }
       EXPECT_LT(largest, 1e-3) << name << " scene " << seed << ": a unit still moves after 30 s (J)";
     }
@@ -416,21 +412,8 @@ TEST(Restitution, EdgeAndCornerDropsReboundWithTheTargetRestitution) {
         CubeScene s(concrete(e, 0.5), settings);
         s.addFloor();
         const BodyId b = s.addCube(Vec3(0, 0, depth + 0.5), q); // the lowest edge or corner 0.5 m up
-        double impact = 0.0, rebound = 0.0, tContact = -1.0;
-        while (s.world.time() < 1.5) {
-          const double vz = s.world.bodies().velocity(b).z();
-          s.world.step();
-          if (tContact < 0.0 && s.world.lastStep().contactPoints > 0 && s.world.bodies().velocity(b).z() > vz) {
-            tContact = s.world.time();
-            impact = -vz;
-          }
-          if (tContact >= 0.0) {
-            // The largest upward speed over 0.2 s: at separation (a corner contact lasts longer
-            // than a face contact), before gravity slows the rebound.
-            rebound = std::max(rebound, s.world.bodies().velocity(b).z());
-            if (s.world.time() > tContact + 0.2) break;
-          }
-        }
+        // A window of 0.2 s: a corner contact lasts longer than a face contact.
+        const auto [impact, rebound] = measureRebound(s.world, b, 0.2, 1.5);
         ASSERT_GT(impact, 3.0) << c.name << ", " << what << ", e = " << e;
         const double tolerance = c.model == ContactModel::Fdem && std::string(what) == "corner" ? 0.07 : 0.05;
         EXPECT_NEAR(rebound / impact, e, tolerance) << c.name << ", " << what << ", e = " << e;
