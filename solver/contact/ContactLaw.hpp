@@ -29,6 +29,15 @@ namespace armour::contact {
 
 using Vec3 = Eigen::Vector3d;
 
+/// The damping ratios that give restitution e on contacts of exponent p = 1, 1.5, 2, 2.5 and 3
+/// (zeta falls with p: a corner's contact, soft at first, loses more to the same damping ratio).
+struct DampingByExponent {
+  static constexpr int kCount = 5;
+  double zeta[kCount] = {0, 0, 0, 0, 0}; ///< at p = 1 + 0.5 i (unit: -)
+  /// Linear in p, p clamped to [1, 3].
+  [[nodiscard]] double at(double p) const;
+};
+
 /// Material pair parameters of the law.
 struct ContactParameters {
   double penaltyModulus = 1.0e9;      ///< E_p: normal pressure per unit relative depth (unit: Pa)
@@ -36,6 +45,9 @@ struct ContactParameters {
   double frictionStatic = 0.75;       ///< mu_s, Coulomb coefficient while sticking (unit: -)
   double frictionDynamic = 0.75;      ///< mu_d, Coulomb coefficient while sliding (unit: -)
   double dampingRatio = 0.0;          ///< zeta of the contact patch (unit: -)
+  /// zeta by the contact's exponent (dampingByExponentFromRestitution): dampingRatio is set from it
+  /// per pair and step, with the exponent of its points (contactExponent).
+  DampingByExponent dampingByExponent;
   double tangentialStiffnessRatio = 8.0 / 9.0; ///< r_t = k_t / k (unit: -): Mindlin 2(1-nu)/(2-nu), nu = 0.2 (concrete)
 };
 
@@ -46,6 +58,25 @@ double restitutionOfClampedDashpot(double zeta);
 /// Damping ratio giving restitution e (0 < e <= 1) for the clamped law (inverse of the above).
 /// Small e needs zeta > 1 (e = 0.01: zeta = 4.97), which lowers the stable time step.
 double dampingRatioFromRestitution(double restitution);
+
+/// Restitution of the clamped law on a contact whose summed stiffness grows with the overlap d as
+/// d^(p - 1), so that its force is F = K d / p: p = 1 a face, 2 an edge, 3 a corner (the contact
+/// area grows as d^(p - 1)). In units of the impact speed and the mass, the overlap obeys
+/// y'' + 2 zeta sqrt(p) y^((p - 1) / 2) y' + y^p = 0 with the force clamped at zero, whose rebound
+/// does not depend on the impact speed (docs/validation.md, "Restitution at edges and corners";
+/// utilities/restitution_power_law.py). RK4; p = 1 is restitutionOfClampedDashpot.
+double restitutionOfGrowingContact(double zeta, double p);
+
+DampingByExponent dampingByExponentFromRestitution(double restitution);
+
+/// The exponent p of a pair's contact, F = C d^p, from its engaged points: with F the summed normal
+/// elastic force, K the summed tangent stiffness and U the elastic energy, F^2 / (U K) = (p + 1) / p
+/// (a face: 2, p = 1; a wedge of overlap, an edge: 3/2, p = 2; a cone, a corner: 4/3, p = 3). It
+/// reads the overlap's shape, so a face tilted by a small angle theta over a patch of length L
+/// reads p = 1 + O((L theta / d)^2): second order, where d_max K / F is first order. Readings up
+/// to 1.2 count as a face (1), 1.2 to 1.5 map linearly onto 1 to 1.5; clamped to [1, 3]; 1 without
+/// a force.
+double contactExponent(double force, double stiffness, double energy);
 
 /// What a point remembers between steps.
 /// The penalty law uses the spring; the constraint solver (ContactSolver.hpp) the impulses, its

@@ -19,10 +19,27 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <mutex>
+#include <map>
 #include <cmath>
 #include <limits>
 
 namespace armour::simulation {
+
+namespace {
+
+/// The damping ratios of a restitution, computed once per value and process (a few ms each, and
+/// tests build thousands of worlds with the same materials).
+contact::DampingByExponent dampingFor(double restitution) {
+  static std::mutex mutex;
+  static std::map<double, contact::DampingByExponent> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = cache.find(restitution);
+  if (it == cache.end()) it = cache.emplace(restitution, contact::dampingByExponentFromRestitution(restitution)).first;
+  return it->second;
+}
+
+} // namespace
 
 World::World(const WorldSettings& settings) : settings_(settings) {}
 World::~World() = default;
@@ -43,7 +60,7 @@ MaterialId World::addMaterial(const Material& m) {
     core::failInput(where, "penalty modulus = {} Pa: must be positive (e.g. 1e9)", m.penaltyModulus);
   }
   materials_.push_back(m);
-  materialDamping_.push_back(contact::dampingRatioFromRestitution(m.restitution));
+  materialDamping_.push_back(dampingFor(m.restitution));
   cachedStep_ = -1.0;
   return static_cast<MaterialId>(materials_.size() - 1);
 }
@@ -196,7 +213,7 @@ double World::stableTimeStep() const {
   double maxModulus = 0.0, maxZeta = 0.0;
   for (std::size_t i = 0; i < materials_.size(); ++i) {
     maxModulus = std::max(maxModulus, materials_[i].penaltyModulus);
-    maxZeta = std::max(maxZeta, materialDamping_[i]);
+    maxZeta = std::max(maxZeta, materialDamping_[i].zeta[0]); // zeta falls with the exponent: p = 1 the largest
   }
   for (BodyId b = 0; b < bodies_.size(); ++b) {
     if (bodies_.motionType(b) == dynamics::MotionType::Static) {

@@ -53,7 +53,11 @@ contact::ContactParameters World::pairParameters(MaterialId a, MaterialId b, dou
   p.lengthScale = lengthScale;
   p.frictionStatic = std::min(ma.frictionStatic, mb.frictionStatic);
   p.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
-  p.dampingRatio = std::max(materialDamping_[a], materialDamping_[b]); // the smaller restitution
+  // The smaller restitution: the larger damping ratio at every exponent.
+  for (int i = 0; i < contact::DampingByExponent::kCount; ++i) {
+    p.dampingByExponent.zeta[i] = std::max(materialDamping_[a].zeta[i], materialDamping_[b].zeta[i]);
+  }
+  p.dampingRatio = p.dampingByExponent.zeta[0];
   p.tangentialStiffnessRatio = std::min(ma.tangentialStiffnessRatio, mb.tangentialStiffnessRatio);
   return p;
 }
@@ -118,6 +122,22 @@ void World::updateBoxes() {
   }
 }
 
+double World::pairEffectiveMass(BodyId a, std::int64_t b, const Vec3& point, const Vec3& normal, double weight) const {
+  double inverse = bodies_.inverseMass(a) + (b >= 0 ? bodies_.inverseMass(static_cast<BodyId>(b)) : 0.0);
+  if (weight > 0.0 && normal.norm() >= 0.5 * weight) {
+    const Vec3 n = normal.normalized();
+    const Vec3 c = point / weight;
+    const Vec3 ra = (c - bodies_.position(a)).cross(n);
+    inverse += ra.dot(bodies_.inverseInertiaWorld(a) * ra);
+    if (b >= 0) {
+      const auto bb = static_cast<BodyId>(b);
+      const Vec3 rb = (c - bodies_.position(bb)).cross(n);
+      inverse += rb.dot(bodies_.inverseInertiaWorld(bb) * rb);
+    }
+  }
+  return inverse > 0.0 ? 1.0 / inverse : 0.0;
+}
+
 void World::fdemPairForces(PairWork& pw, double dt) const {
   // The potential gives the elastic force of each element pair (or contactor face against static
   // geometry) with its stiffness k and mean depth d = |F| / k; the pair then goes through the same
@@ -132,7 +152,6 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   pa.position = bodies_.position(a);
   pa.scale = bodyScale_[a];
   double lengthScale = bodyDn(a);
-  double inverseMassSum = bodies_.inverseMass(a);
   contact::ContactParameters params;
   std::vector<contact::FdemContact> records;
   BodyId b = a;
@@ -156,7 +175,6 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
     pb.position = bodies_.position(b);
     pb.scale = bodyScale_[b];
     lengthScale = std::min(lengthScale, bodyDn(b));
-    inverseMassSum += bodies_.inverseMass(b);
     // Static geometry's potential is its exact depth and never fades; two bodies' element
     // potentials peak at their surface elements' centroids.
     pw.fdemReach = std::min(shapeA.fdem->reach() * pa.scale, shapeB.fdem->reach() * pb.scale);
@@ -168,11 +186,22 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   if (records.empty()) {
     return;
   }
-  double pairStiffness = 0.0;
+  double pairStiffness = 0.0, pairForce = 0.0, pairEnergy = 0.0, weight = 0.0;
+  Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
   for (const auto& r : records) {
     pairStiffness += r.stiffness;
+    if (r.stiffness > 0.0 && r.depth > 0.0) {
+      pairForce += r.stiffness * r.depth;
+      pairEnergy += r.energy;
+      weight += r.stiffness;
+      centre += r.stiffness * r.point;
+      normal += r.stiffness * r.normal;
+    }
   }
-  const double effectiveMass = inverseMassSum > 0.0 ? 1.0 / inverseMassSum : 0.0;
+  // The damping ratio for how the contact stiffens with its overlap (a face, an edge, a corner),
+  // and the effective mass at the contact, for an off-centre impact as for a central one.
+  params.dampingRatio = params.dampingByExponent.at(contact::contactExponent(pairForce, pairStiffness, pairEnergy));
+  const double effectiveMass = pairEffectiveMass(a, isStatic ? -1 : static_cast<std::int64_t>(b), centre, normal, weight);
   const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
   const Vec3& xA = pa.position;
   const Vec3& xB = bodies_.position(b);
@@ -316,8 +345,7 @@ void World::computeForces(double dt, double stateTime) {
     const Vec3& xA = bodies_.position(a);
     double lengthScale = bodyDn(a);
     contact::ContactParameters params;
-    double inverseMassSum = bodies_.inverseMass(a);
-    if (plane) {
+      if (plane) {
       const bool isPlane = (pw.key.second & kPlaneBit) != 0;
       const StaticTarget target = staticTarget(planes_, convex_, isPlane, pw.key.second & ~kStaticBits, boxes_[a]);
       const contact::HalfSpaces solid{target.normals, target.offsets(), target.region};
@@ -326,19 +354,29 @@ void World::computeForces(double dt, double stateTime) {
     } else {
       const BodyId b = pw.key.second;
       lengthScale = std::min(lengthScale, bodyDn(b));
-      inverseMassSum += bodies_.inverseMass(b);
-      pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
+        pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
                                                   engaged, lists[w], sampleListSlack(a, b));
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
     }
     if (engaged.empty()) {
       continue;
     }
-    double pairStiffness = 0.0;
+    double pairStiffness = 0.0, pairForce = 0.0, pairEnergy = 0.0;
+    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
     for (const auto& e : engaged) {
-      pairStiffness += contact::pointStiffness(params, e.area);
+      const double k = contact::pointStiffness(params, e.area);
+      const double d = std::max(e.depth, 0.0);
+      pairStiffness += k;
+      pairForce += k * d;
+      pairEnergy += 0.5 * k * d * d;
+      centre += k * e.point;
+      normal += k * e.normal;
     }
-    const double effectiveMass = inverseMassSum > 0.0 ? 1.0 / inverseMassSum : 0.0;
+    // The damping ratio for how the contact stiffens with its overlap (a face, an edge, a corner),
+    // and the effective mass at the contact, for an off-centre impact as for a central one.
+    params.dampingRatio = params.dampingByExponent.at(contact::contactExponent(pairForce, pairStiffness, pairEnergy));
+    const double effectiveMass =
+        pairEffectiveMass(a, plane ? -1 : static_cast<std::int64_t>(pw.key.second), centre, normal, pairStiffness);
     const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
     const BodyId b = plane ? a : pw.key.second;
     const Vec3& xB = bodies_.position(b);

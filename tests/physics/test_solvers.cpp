@@ -99,6 +99,50 @@ Rebound measureRebound(World& world, BodyId b, double window, double until) {
   return r;
 }
 
+/// An off-centre, frictionless drop on the floor, measured by the energy it loses: the energetic
+/// restitution e* = sqrt(1 - dE / (m_eff v_n^2 / 2)) (Stronge's coefficient; for a frictionless
+/// impact Newton's, Poisson's and Stronge's are one e). dE is the loss of mechanical energy (kinetic
+/// plus m g z) from the step before the floor first pushes to the first step it pushes no more;
+/// v_n and m_eff = 1 / (1/m + (r x n) . I^-1 (r x n)) are those of the contact point (the patch
+/// centre of that first step, r from the centre of mass) just before. Rigid-body impact theory:
+/// e* = e whatever the lever arm. Returns e*, or -1 if the contact has not ended within `window` (s).
+double energeticRestitution(World& world, BodyId b, double window, double until) {
+  world.setRecordContacts(true);
+  const auto& bodies = world.bodies();
+  const double mass = bodies.info(b).mass;
+  const auto energy = [&] { return bodies.kineticEnergy(b) + mass * kG * bodies.position(b).z(); };
+  double tContact = -1.0, before = 0.0, available = 0.0;
+  while (world.time() < until) {
+    const Vec3 v0 = bodies.velocity(b), w0 = bodies.worldAngularVelocity(b), x0 = bodies.position(b);
+    const Eigen::Matrix3d inverseInertia = bodies.inverseInertiaWorld(b);
+    const double e0 = energy();
+    world.step();
+    double pushed = 0.0;
+    Vec3 point = Vec3::Zero();
+    for (const auto& patch : world.contactPatches()) {
+      if (patch.bodyA == b && patch.bodyB < 0 && patch.normalForce > 0.0) {
+        pushed += patch.normalForce;
+        point = patch.point;
+      }
+    }
+    if (tContact < 0.0 && pushed > 0.0) {
+      tContact = world.time();
+      const Vec3 r = point - x0, rn = r.cross(Vec3::UnitZ());
+      const double vn = (v0 + w0.cross(r)).z();
+      const double effectiveMass = 1.0 / (1.0 / mass + rn.dot(inverseInertia * rn));
+      before = e0;
+      available = 0.5 * effectiveMass * vn * vn;
+    } else if (tContact >= 0.0 && pushed == 0.0) {
+      const double lost = before - energy();
+      return std::sqrt(std::max(1.0 - lost / available, 0.0));
+    }
+    if (tContact >= 0.0 && world.time() > tContact + window) {
+      break;
+    }
+  }
+  return -1.0;
+}
+
 class BothSolvers : public ::testing::TestWithParam<ContactSolverKind> {};
 
 std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) { return solverName(info.param); }
@@ -389,10 +433,11 @@ TEST(Restitution, EdgeAndCornerDropsReboundWithTheTargetRestitution) {
   // Issue 23 item 10: a unit cube dropped at 3.1 m/s on an edge (turned 45 degrees about x) and on a
   // corner (its diagonal vertical), the centre of mass above the contact, so that rigid-body
   // impact theory gives the centre's rebound speed as e times its impact speed, as for a face drop.
-  // For each contact model and solver, within the face test's 0.05 of e; the fdem corner within
-  // 0.07 (measured in session 14: 0.434 at e = 0.5, the only case off by more than 0.05; its
-  // corner and edge contacts stiffen with depth, which the dashpot's e-to-damping relation, made
-  // for a constant stiffness, does not know: docs/validation.md, "Restitution at edges and corners").
+  // For each contact model and solver, within 0.025 of e. An edge's or a corner's penalty contact
+  // stiffens with its depth (F = K d / p, p = 2 and 3), so the penalty laws take the damping ratio
+  // for the contact's exponent p, read from its points (contactExponent). Before (session 14, one
+  // damping ratio for a face), the fdem corner rebounded at 0.434 and the level-set corner at 0.465
+  // for e = 0.5; now 0.498 and 0.497 (docs/validation.md, "Restitution at edges and corners").
   struct Case {
     const char* name;
     ContactSolverKind solver;
@@ -415,11 +460,79 @@ TEST(Restitution, EdgeAndCornerDropsReboundWithTheTargetRestitution) {
         // A window of 0.2 s: a corner contact lasts longer than a face contact.
         const auto [impact, rebound] = measureRebound(s.world, b, 0.2, 1.5);
         ASSERT_GT(impact, 3.0) << c.name << ", " << what << ", e = " << e;
-        const double tolerance = c.model == ContactModel::Fdem && std::string(what) == "corner" ? 0.07 : 0.05;
-        EXPECT_NEAR(rebound / impact, e, tolerance) << c.name << ", " << what << ", e = " << e;
+        EXPECT_NEAR(rebound / impact, e, 0.025) << c.name << ", " << what << ", e = " << e;
         RecordProperty(std::string(c.model == ContactModel::Fdem ? "fdem_" : "") + solverName(c.solver) + "_" + what +
                            "_e" + std::to_string(static_cast<int>(100 * e)),
                        std::to_string(rebound / impact));
+      }
+    }
+  }
+}
+
+TEST(Restitution, OffCentreImpactsOfBlocksAndCoreLocsLoseTheEnergyOfRigidBodyImpactTheory) {
+  // Issue 23 item 10, off the centre: a cube turned so that one corner lands first with its centre
+  // of mass beside it (25 degrees about x, then 15 about y), and Core-Locs of 1 m^3 in three random
+  // attitudes, dropped frictionless at 3.1 m/s. Rigid-body impact theory: the impact keeps e^2 of
+  // the energy m_eff v_n^2 / 2 of the contact point's normal motion (energeticRestitution), the
+  // lever arm entering through m_eff. The theory is the limit of a short contact: asserted within
+  // 0.05 of e with the penalty contact 100 times stiffer than the default (E_p = 1e11 Pa), and with
+  // the constraint solver at a step of 1 ms. At the defaults (E_p = 1e9 Pa, 1/200 s) the measured
+  // departures are larger and held within 0.2 (session 15: the corner of the cube keeps 0.40,
+  // fdem 0.33, at e = 0.5; the constraint solver 0.476, first order in its step:
+  // docs/validation.md, "Off-centre impacts"). Before the penalty dashpot took the effective mass
+  // at the contact, rotation included, the stiff runs gave 0.30 to 0.42 at e = 0.5.
+  // e = 0.05 is not asserted here: e^2 = 0.25 % of the energy is below the measure's resolution.
+  struct Case {
+    const char* name;
+    ContactSolverKind solver;
+    ContactModel model;
+    bool converged; // stiff contact or short step: the theory's limit
+  };
+  const Case cases[] = {{"penalty, level set", ContactSolverKind::Penalty, ContactModel::LevelSet, true},
+                        {"penalty, fdem", ContactSolverKind::Penalty, ContactModel::Fdem, true},
+                        {"constraint", ContactSolverKind::Constraint, ContactModel::LevelSet, true},
+                        {"penalty, level set", ContactSolverKind::Penalty, ContactModel::LevelSet, false},
+                        {"penalty, fdem", ContactSolverKind::Penalty, ContactModel::Fdem, false},
+                        {"constraint", ContactSolverKind::Constraint, ContactModel::LevelSet, false}};
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<std::pair<std::string, Quat>> drops = {
+      {"cube", Quat(Eigen::AngleAxisd(0.2618, Vec3::UnitY()) * Eigen::AngleAxisd(0.4363, Vec3::UnitX()))}};
+  for (int k = 0; k < 3; ++k) {
+    drops.emplace_back("coreloc", Quat(Eigen::AngleAxisd(3.0 * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized())));
+  }
+  for (const Case& c : cases) {
+    for (const double e : {0.5, 0.9}) {
+      for (std::size_t k = 0; k < drops.size(); ++k) {
+        const auto& [shape, q] = drops[k];
+        WorldSettings settings = settingsFor(c.solver);
+        settings.contactModel = c.model;
+        Material material = concrete(e, 0.0);
+        if (c.converged && c.solver == ContactSolverKind::Constraint) settings.timeStep = 1.0e-3;
+        if (c.converged && c.solver == ContactSolverKind::Penalty) material.penaltyModulus = 1.0e11;
+        World w(settings);
+        const MaterialId m = w.addMaterial(material);
+        w.addPlane({"floor", Vec3::Zero(), Vec3::UnitZ(), m});
+        BodySpec spec;
+        spec.shape = w.addShape(shape, test::unitShape(shape));
+        spec.material = m;
+        spec.orientation = q;
+        spec.position = Vec3(0.0, 0.0, 10.0);
+        const BodyId b = w.addBody(spec);
+        double lowest = 0.0; // of the body's surface below its centre, in this attitude
+        for (const Vec3& v : w.shape(spec.shape).mesh.vertices) {
+          lowest = std::min(lowest, (w.bodies().orientation(b) * v).z());
+        }
+        w.bodies().setPosition(b, Vec3(0.0, 0.0, 0.5 - lowest)); // the lowest point 0.5 m up
+        w.invalidateBoxes();
+        const double measured = energeticRestitution(w, b, 0.3, 1.5);
+        const std::string tag = std::string(c.name) + (c.converged ? " (stiff or short step)" : " (defaults)") + ", " +
+                                shape + " " + std::to_string(k) + ", e = " + std::to_string(e);
+        EXPECT_NEAR(measured, e, c.converged ? 0.05 : 0.2) << tag;
+        RecordProperty(std::string(c.converged ? "converged_" : "defaults_") +
+                           (c.model == ContactModel::Fdem ? "fdem_" : "") + solverName(c.solver) + "_" + shape +
+                           std::to_string(k) + "_e" + std::to_string(static_cast<int>(100 * e)),
+                       std::to_string(measured));
       }
     }
   }

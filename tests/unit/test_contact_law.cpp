@@ -122,3 +122,49 @@ TEST(ContactLaw, StretchIsCarriedIntoTheNewTangentPlane) {
   EXPECT_NEAR(f.history.stretch.norm(), 1e-5, 1e-18);
   EXPECT_NEAR(f.history.stretch.dot(n), 0.0, 1e-18);
 }
+
+TEST(ContactLaw, GrowingContactModelReducesToTheClosedFormOnAFace) {
+  // restitutionOfGrowingContact integrates y'' + 2 zeta sqrt(p) y^((p-1)/2) y' + y^p = 0 with RK4;
+  // at p = 1 it is the linear clamped dashpot, whose rebound is known in closed form (Schwager and
+  // Poschel 2007, restitutionOfClampedDashpot): the integration must agree to 1e-4 (measured: at
+  // most 9.3e-5, at zeta = 0.9; the first RK4 stage, at y = 0, sees no dashpot for p > 1).
+  for (const double zeta : {0.02, 0.255, 0.9, 1.0, 1.5, 3.0}) {
+    // Nudge p just above 1 so that the integrator, not the closed-form shortcut, answers.
+    EXPECT_NEAR(restitutionOfGrowingContact(zeta, 1.0 + 1e-12), restitutionOfClampedDashpot(zeta), 1e-4)
+        << "zeta = " << zeta;
+  }
+  // The table: zeta(e, p) gives e back at every exponent, and zeta falls with p (the stable step,
+  // which takes p = 1, stays the largest), e.g. e = 0.5: a corner (p = 3) needs less damping.
+  for (const double e : {0.05, 0.5, 0.9}) {
+    const DampingByExponent table = dampingByExponentFromRestitution(e);
+    for (int i = 0; i < DampingByExponent::kCount; ++i) {
+      EXPECT_NEAR(restitutionOfGrowingContact(table.zeta[i], 1.0 + 0.5 * i), e, 1e-4) << "e = " << e << ", i = " << i;
+      if (i > 0) EXPECT_LT(table.zeta[i], table.zeta[i - 1]) << "e = " << e << ", i = " << i;
+    }
+  }
+}
+
+TEST(ContactLaw, ContactExponentReadsFacesEdgesAndCorners) {
+  // Point sets with the depth profiles of a face, a wedge (an edge: the depth falls linearly to 0
+  // across the patch) and a cone (a corner: to 0 along the radius), 200^2 equal-area points; and a
+  // face tilted so its depths span d +- 0.3 d, which the reading must still call a face.
+  const int n = 200;
+  const auto read = [&](auto depthAt) {
+    double force = 0.0, stiffness = 0.0, energy = 0.0;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double x = (i + 0.5) / n, y = (j + 0.5) / n;
+        const double d = depthAt(x, y);
+        if (d <= 0.0) continue;
+        stiffness += 1.0, force += d, energy += 0.5 * d * d;
+      }
+    }
+    return contactExponent(force, stiffness, energy);
+  };
+  EXPECT_DOUBLE_EQ(read([](double, double) { return 0.01; }), 1.0);
+  EXPECT_NEAR(read([](double x, double) { return 0.01 * x; }), 2.0, 0.01);
+  EXPECT_NEAR(read([](double x, double y) { return 0.01 * (0.5 - std::hypot(x - 0.5, y - 0.5)); }), 3.0, 0.02);
+  EXPECT_DOUBLE_EQ(read([](double x, double) { return 0.01 * (1.0 + 0.6 * (x - 0.5)); }), 1.0);
+  // No force: a face.
+  EXPECT_DOUBLE_EQ(contactExponent(0.0, 0.0, 0.0), 1.0);
+}
