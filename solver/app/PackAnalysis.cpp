@@ -37,6 +37,38 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
+/// For each unit, the slope-normal top (frame coordinates, m) of the underlayer under it: the
+/// highest top of the support bodies (fixed bodies and bodies not named as units: the rocks) whose
+/// centroids project within 1 Dn of the unit's in the slope plane; 0, the frame plane, where none does.
+std::vector<double> underlayerTopsUnder(const io::Scene& scene, const simulation::BuiltScene& built,
+                                        const std::vector<std::size_t>& units,
+                                        const std::vector<Eigen::Vector3d>& positions, const std::vector<double>& dn,
+                                        const analysis::SlopeFrame& frame) {
+  const simulation::World& world = *built.world;
+  std::vector<bool> isUnit(scene.bodies.size(), false);
+  for (std::size_t i : units) isUnit[i] = true;
+  std::vector<Eigen::Vector3d> supportLocal;
+  std::vector<double> supportTop;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (isUnit[i]) continue;
+    const auto b = built.bodyIndexOfSceneBody[i];
+    geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
+    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
+    supportLocal.push_back(frame.toLocal(world.bodies().position(b)));
+    supportTop.push_back(analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y());
+  }
+  std::vector<double> tops(units.size(), 0.0);
+  for (std::size_t k = 0; k < units.size(); ++k) {
+    const Eigen::Vector3d l = frame.toLocal(positions[k]);
+    for (std::size_t j = 0; j < supportLocal.size(); ++j) {
+      if (std::hypot(supportLocal[j].x() - l.x(), supportLocal[j].y() - l.y()) < dn[k]) {
+        tops[k] = std::max(tops[k], supportTop[j]);
+      }
+    }
+  }
+  return tops;
+}
+
 } // namespace
 
 PoseMap posesOf(const io::Scene& scene) {
@@ -213,6 +245,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     r.displacement = analysis::measureDisplacement(before, positions, qBefore, orientations, dn, r.frame,
                                                    settings.displacement);
   }
+  const std::vector<double> underlayer = underlayerTopsUnder(scene, built, units, positions, dn, r.frame);
   for (std::size_t k = 0; k < units.size(); ++k) {
     UnitRow row;
     row.name = scene.bodies[units[k]].name;
@@ -226,6 +259,10 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     row.unitNeighbours = c.unitNeighbours;
     row.supportNeighbours = c.supportNeighbours;
     row.maxContactForce = c.maxForce;
+    row.heightAboveUnderlayer = (row.local.z() - underlayer[k]) / dn[k];
+    row.stacked = c.supportNeighbours == 0 && row.heightAboveUnderlayer > 1.0;
+    r.touchingUnderlayer += c.supportNeighbours > 0 ? 1 : 0;
+    r.stackedUnits += row.stacked ? 1 : 0;
     if (r.displacement) row.displacement = r.displacement->units[k];
     r.units.push_back(row);
   }
@@ -249,6 +286,10 @@ std::string packText(const PackReport& r) {
   if (r.thickness)
     t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}), porosity {:.3f}\n", r.thickness->thickness,
                      r.thickness->layerCoefficient, r.porosity);
+  const double count = static_cast<double>(std::max<std::size_t>(r.units.size(), 1));
+  t += fmt::format("underlayer          {} units touch it ({:.3f}); {} stacked ({:.3f}: no support touched, centroid "
+                   "> 1 Dn above the underlayer)\n",
+                   r.touchingUnderlayer, r.touchingUnderlayer / count, r.stackedUnits, r.stackedUnits / count);
   if (r.displacement) {
     const auto& d = *r.displacement;
     t += fmt::format("displacement        delta_rms {:.4g} m ({:.4g} Dn), horizontal {:.4g} m; mean {:.4g} Dn, max {:.4g} "
@@ -268,14 +309,15 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
   if (ec) core::failInput(folder.string(), "cannot create the output folder: {}", ec.message());
   core::writeFileAtomically(folder / "units.csv", [&](std::ostream& o) {
     o << "unit,x,y,z,s,t,dn,dip_deg,dip_azimuth_deg,stereo_x,stereo_y,contact_number,unit_neighbours,"
-         "support_neighbours,max_contact_force_N";
+         "support_neighbours,max_contact_force_N,height_above_underlayer_dn,stacked";
     if (r.displacement) o << ",disp_s,disp_t,disp_n,displacement_dn,rotation_deg,rocking";
     o << "\n";
     for (const UnitRow& u : r.units) {
-      o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", u.name, num(u.position.x()), num(u.position.y()),
-                       num(u.position.z()), num(u.local.x()), num(u.local.y()), num(u.dn), num(u.attitude.dip * kDeg),
-                       num(u.attitude.dipAzimuth * kDeg), num(u.stereo.x()), num(u.stereo.y()), u.contactNumber,
-                       u.unitNeighbours, u.supportNeighbours, num(u.maxContactForce));
+      o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", u.name, num(u.position.x()),
+                       num(u.position.y()), num(u.position.z()), num(u.local.x()), num(u.local.y()), num(u.dn),
+                       num(u.attitude.dip * kDeg), num(u.attitude.dipAzimuth * kDeg), num(u.stereo.x()),
+                       num(u.stereo.y()), u.contactNumber, u.unitNeighbours, u.supportNeighbours,
+                       num(u.maxContactForce), num(u.heightAboveUnderlayer), u.stacked ? 1 : 0);
       if (u.displacement) {
         const auto& d = *u.displacement;
         o << fmt::format(",{},{},{},{},{},{}", num(d.local.x()), num(d.local.y()), num(d.local.z()), num(d.distanceDn),
@@ -293,8 +335,10 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
                      json(r.contacts.coordinationNumber), json(r.contacts.meanContactNumber), json(r.contacts.maxForce));
     o << fmt::format("  \"packing_density_hull\": {},\n  \"hull_area_m2\": {},\n", json(r.packingHull.phi),
                      json(r.packingHull.area));
-    o << fmt::format("  \"layer_thickness_m\": {},\n  \"porosity\": {}", json(r.thickness ? r.thickness->thickness : NAN),
+    o << fmt::format("  \"layer_thickness_m\": {},\n  \"porosity\": {},\n", json(r.thickness ? r.thickness->thickness : NAN),
                      json(r.thickness ? r.porosity : NAN));
+    o << fmt::format("  \"units_touching_underlayer\": {},\n  \"stacked_units\": {}", r.touchingUnderlayer,
+                     r.stackedUnits);
     if (r.displacement) {
       const auto& d = *r.displacement;
       std::vector<std::string> counts;

@@ -55,6 +55,13 @@ struct UnitRow {
   Eigen::Vector2d stereo = Eigen::Vector2d::Zero();
   std::size_t contactNumber = 0, unitNeighbours = 0, supportNeighbours = 0;
   double maxContactForce = 0.0;   ///< unit: N
+  /// Slope-normal height of the centroid above the underlayer's top under it (the highest top of
+  /// the support bodies whose centroids lie within 1 Dn of the unit's in the slope plane, or the
+  /// frame plane where there is none) (unit: Dn).
+  double heightAboveUnderlayer = 0.0;
+  /// No support touched and the centroid more than 1 Dn above the underlayer: a unit lying on
+  /// others (issue 24; the guidance wants every unit of a single layer on the underlayer).
+  bool stacked = false;
   std::optional<analysis::UnitDisplacement> displacement;
 };
 
@@ -67,6 +74,8 @@ struct PackReport {
   analysis::PackingDensity packingHull;
   std::optional<analysis::LayerThickness> thickness;
   double porosity = 0.0;            ///< 1 - N V / (A t) over the hull (unit: -); 0 without a thickness
+  std::size_t touchingUnderlayer = 0; ///< units that touch a support: rocks, the slope, the toe (unit: -)
+  std::size_t stackedUnits = 0;       ///< units with UnitRow::stacked (unit: -)
   std::optional<analysis::PackDisplacement> displacement;
   std::string axis;
   double rockingAngle = 0.0;        ///< the rocking threshold used (unit: rad)

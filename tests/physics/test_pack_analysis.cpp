@@ -104,3 +104,35 @@ TEST(PackAnalysis, StateFilesAreReadOrRefusedWithTheLine) {
   EXPECT_NEAR(poses.at("c0").orientation.z(), 1.0, 1e-15); // normalised
   std::filesystem::remove(file);
 }
+
+TEST(PackAnalysis, UnitsOnTheUnderlayerAndStackedUnitsAreCounted) {
+  // 1 m cubes lying on a 1:2 slope (faces 1 mm into what they rest on): c0 and c1 on the face, c2
+  // on c0 (centroid 1.5 Dn above the face, touching no support: stacked), and c3 on a fixed 0.5 m
+  // rock (touching a support; 0.5 Dn above the rock's top, 1 Dn above the face: not stacked).
+  const std::string yaml = R"(
+duration: 1
+materials:
+  concrete: {density: 2400, friction: 0.7, restitution: 0.1}
+bodies:
+  - {name: c0, shape: cube, dn: 1, material: concrete, position: [2.460122, 0, 1.78796], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c1, shape: cube, dn: 1, material: concrete, position: [4.69619, 0, 2.905994], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c2, shape: cube, dn: 1, material: concrete, position: [2.013356, 0, 2.681493], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: rock, shape: cube, dn: 0.5, material: concrete, fixed: true, position: [7.491275, 0, 4.024028], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c3, shape: cube, dn: 1, material: concrete, position: [7.156759, 0, 4.693059], orientation: {euler_deg: [0, -26.565051, 0]}}
+static:
+  - {type: slope, name: underlayer, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 10}
+)";
+  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "slope.yaml");
+  const app::PackReport r = app::analysePack(scene, app::AnalyseSettings{});
+  ASSERT_TRUE(r.frameFromSlope);
+  ASSERT_EQ(r.units.size(), 4u); // the fixed rock is a support
+  const double expected[] = {0.499, 0.499, 1.498, 0.997 - 0.499}; // c0, c1, c2, c3 above their underlayer (Dn)
+  const bool stacked[] = {false, false, true, false};
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_NEAR(r.units[k].heightAboveUnderlayer, expected[k], 1e-4) << r.units[k].name;
+    EXPECT_EQ(r.units[k].stacked, stacked[k]) << r.units[k].name;
+  }
+  EXPECT_EQ(r.touchingUnderlayer, 3u); // c0, c1 (the slope) and c3 (the rock)
+  EXPECT_EQ(r.stackedUnits, 1u);
+  EXPECT_NE(app::packText(r).find("3 units touch it (0.750); 1 stacked (0.250"), std::string::npos) << app::packText(r);
+}
