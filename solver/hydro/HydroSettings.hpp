@@ -42,6 +42,26 @@ struct AddedMassSettings {
   double coefficient = 1.0;         ///< C_a (unit: -)
 };
 
+/// What lies under a unit that rests on the bed (docs/foam-bridge.md, "A unit on an impermeable bed").
+enum class BedKind {
+  Porous,      ///< water under the unit at the pressure of its surroundings: every element takes pressure (seed 000's
+               ///< units on a rock underlayer; the tank's convention when units sit on a porous layer)
+  Impermeable, ///< a tank floor or a slab: elements lying on the bed and facing down into it take no pressure
+};
+
+/// The bed under the units, for the pressure integration (hydro.storm.bed*, docs/scene-file.md).
+struct BedSettings {
+  BedKind kind = BedKind::Porous;
+  /// z of the bed in the scene's coordinates (unit: m). The scene reader fills it from
+  /// hydro.storm.bed_level, or from the scene's one horizontal static plane.
+  double level = 0.0;
+  /// An element lies on the bed when its centroid is at most this far above it (or anywhere below
+  /// it), as a fraction of its unit's Dn (unit: Dn). 0.01 is ours: a unit resting on the bed sinks
+  /// into it by the contact overlap, ~1e-5 Dn at the default penalty (docs/scene-file.md), and a
+  /// rocking unit's lifted edge, which water reaches, leaves the band after a tilt of ~1 degree.
+  double toleranceDn = 0.01;
+};
+
 struct StormLoadSettings {
   std::string file;                 ///< storm file; relative paths are relative to the scene file
   double timeOffset = 0.0;          ///< storm time at simulation time 0 (unit: s)
@@ -61,6 +81,7 @@ struct StormLoadSettings {
   /// on a Core-Loc (seed 000 integrates over ~4000); 0.05 gives 18 256.
   double elementSizePerDn = 0.1;
   bool pressure = true;             ///< form force and moment by pressure integration (buoyancy included)
+  BedSettings bed;                  ///< porous (every element loaded) or impermeable (elements on it are not)
   VariabilitySettings variability;
   DragSettings drag;
   AddedMassSettings addedMass;

@@ -17,6 +17,11 @@ namespace {
 constexpr double kStateTag = 4860001.0;
 /// Doubles per held load in the saved state.
 constexpr std::size_t kHeldDoubles = 13;
+/// On an impermeable bed, an element faces down into it when its outward normal's z is at most
+/// this: within 25.8 degrees of straight down. A flat bottom face has -1, tilted by the unit's
+/// rocking a little less; side faces (0) and a rounded fluke's flanks above about 26 degrees keep
+/// their pressure. Ours; the height band (BedSettings::toleranceDn) does most of the selection.
+constexpr double kBedNormalZ = -0.9;
 
 void checkSettings(const StormLoadSettings& s) {
   if (!(s.updateInterval > 0.0) || !std::isfinite(s.updateInterval)) {
@@ -41,6 +46,12 @@ void checkSettings(const StormLoadSettings& s) {
     core::failInput("hydro.storm.added_mass.coefficient", "= {}: C_a must be finite and >= 0 (e.g. 1)",
                     s.addedMass.coefficient);
   }
+  if (!std::isfinite(s.bed.level)) {
+    core::failInput("hydro.storm.bed_level", "= {} m: must be finite (the z of the bed in the scene)", s.bed.level);
+  }
+  if (!(s.bed.toleranceDn >= 0.0 && s.bed.toleranceDn <= 1.0)) {
+    core::failInput("hydro.storm.bed_tolerance", "= {} Dn: must lie in [0, 1] (default 0.01)", s.bed.toleranceDn);
+  }
   if (s.variability.patchesPerAxis < 1 || s.variability.patchesPerAxis > 40) {
     core::failInput("hydro.storm.variability.patches_per_axis", "= {}: must be between 1 and 40 (2 = octants)",
                     s.variability.patchesPerAxis);
@@ -63,6 +74,7 @@ struct StormLoads::ShapeData {
   SurfaceElements elements;
   ProjectedAreaTable area;
   double radius = 0.0; ///< largest vertex distance from the centroid, unscaled (m)
+  double dn = 0.0;     ///< nominal diameter, the cube root of the volume, unscaled (m)
 };
 
 StormLoads::StormLoads(const simulation::World& world, const StormLoadSettings& settings, std::string bodies,
@@ -157,6 +169,11 @@ void StormLoads::initialise(const simulation::World& world) {
               "foam-proxy sample --uniform-along-y)",
               outsideTrunk, loadedCount, reader_->path(), trunkMin_, trunkMax_);
   }
+  if (settings_.bed.kind == BedKind::Impermeable) {
+    log->info("hydro: impermeable bed at z = {} m: surface elements within {} Dn above it (or below it) whose "
+              "outward normal points down (n_z <= {}) take no pressure",
+              settings_.bed.level, settings_.bed.toleranceDn, kBedNormalZ);
+  }
   if (settings_.variability.enabled && !variability_.active()) {
     log->info("storm file '{}' has no usable variability model: loads from the y-averaged pressure only",
               reader_->path());
@@ -208,6 +225,7 @@ void StormLoads::syncBodies(const simulation::World& world) {
           buildSurfaceElements(shape.mesh, settings_.elementSizePerDn * dn, settings_.variability.patchesPerAxis);
       data->area = ProjectedAreaTable(shape.mesh);
       data->radius = shape.radius;
+      data->dn = dn;
       shapes_[id] = std::move(data);
     }
   }
@@ -382,6 +400,10 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   }
   const bool addedMass = settings_.addedMass.enabled;
   const double wetAlpha = settings_.wetAlpha;
+  // An impermeable bed (BedSettings): no water, so no pressure, under the elements lying on it and
+  // facing down into it; the top of the band in the file's z, like the element centroids below.
+  const bool bed = settings_.bed.kind == BedKind::Impermeable;
+  const double bedTop = settings_.bed.level + offset_.z() + settings_.bed.toleranceDn * s * shape.dn;
   Vec3 forceBody = Vec3::Zero(), torqueBody = Vec3::Zero(), velocitySum = Vec3::Zero(), rateSum = Vec3::Zero();
   double wetArea = 0.0, rateArea = 0.0;
   std::uint32_t sampled = 0, wetElements = 0, filledElements = 0;
@@ -403,8 +425,10 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
     filledElements += f.filled ? 1 : 0;
     const double a = el.area[e];
     const double p = f.p + deviation[el.patch[e]];
-    forceBody.noalias() -= (p * a) * el.normal[e];
-    torqueBody.noalias() -= p * el.momentArm[e];
+    if (!(bed && c.z() <= bedTop && rotation.row(2).dot(el.normal[e]) <= kBedNormalZ)) {
+      forceBody.noalias() -= (p * a) * el.normal[e];
+      torqueBody.noalias() -= p * el.momentArm[e];
+    }
     wetArea += a;
     velocitySum += a * Vec3(f.u, f.v, f.w);
     if (addedMass) {

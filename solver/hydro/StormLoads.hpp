@@ -13,7 +13,9 @@
 ///    (atmospheric) where the water fraction is below wetAlpha or the voxels around the sample
 ///    have no data; an element beyond the grid's outermost centres (x, z) takes the flow held at
 ///    the edge, and one beyond a bounded trunk's ends (y) the section's flow, so that the closed
-///    surface integral stays consistent for a unit reaching out of the sampling box;
+///    surface integral stays consistent for a unit reaching out of the sampling box; on an
+///    impermeable bed (StormLoadSettings::bed) the elements lying on it and facing down into it
+///    take no pressure (the default, a porous bed, loads every element);
 ///  - Morison drag (seed 000 eq. 2) at the centre of mass: F_D = 1/2 rho C_d A (u - v)|u - v|, u the
 ///    area-weighted mean flow velocity over the wet elements, v the body's current velocity, A the
 ///    silhouette area normal to u - v (ProjectedArea.hpp) times s^2 and the wet area fraction;

@@ -2,6 +2,7 @@
 #include "io/BodySeriesReader.hpp"
 
 #include "core/Error.hpp"
+#include "core/ProbeInChild.hpp"
 
 #include <netcdf.h>
 
@@ -17,6 +18,13 @@ BodySeriesReader::BodySeriesReader(const fs::path& path) : path_(path) {
   if (!fs::exists(path))
     core::failInput(path.string(), "missing: the run folder has no body series; give the output folder of a run "
                                    "(`armour run` writes bodies.nc there when output.series_interval > 0)");
+  // A damaged file can crash libhdf5 inside nc_open: read it in a child first (core/ProbeInChild.hpp).
+  core::probeInChild(path.string(), {"body series file", "rerun the scene, or restart it from its checkpoint"}, [&] {
+    const BodySeriesReader probe(path); // in the child: no second probe
+    std::vector<double> values;
+    probe.positions(probe.records() - 1, 1, values);
+    probe.orientations(probe.records() - 1, values);
+  });
   check(nc_open(path.c_str(), NC_NOWRITE, &ncid_),
         "open (not a readable netCDF file: cut short or damaged, so rerun the scene or restart it from its "
         "checkpoint; or locked by a run still writing it, so set HDF5_USE_FILE_LOCKING=FALSE)");

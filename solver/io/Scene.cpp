@@ -252,6 +252,12 @@ std::string describeScene(const Scene& s) {
                        st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate", st.rampTime));
       line(fmt::format("  wet_alpha = {} (-), element_size = {} Dn, pressure = {}", st.wetAlpha, st.elementSizePerDn,
                        st.pressure));
+      // Only when not the default: the checkpoint's scene fingerprint is made from this text, and
+      // checkpoints of porous-bed scenes written before the setting existed must still restart.
+      if (st.bed.kind == hydro::BedKind::Impermeable) {
+        line(fmt::format("  bed = impermeable, bed_level = {} m, bed_tolerance = {} Dn", st.bed.level,
+                         st.bed.toleranceDn));
+      }
       line(fmt::format("  variability: enabled = {}, seed = {}, patches_per_axis = {}", st.variability.enabled,
                        st.variability.seed, st.variability.patchesPerAxis));
       line(fmt::format("  drag: enabled = {}, coefficient = {} (-)", st.drag.enabled, st.drag.coefficient));

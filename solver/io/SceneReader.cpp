@@ -685,12 +685,41 @@ const KeyList kHydroKeys{"model", "bodies", "storm", "oscillating", "shallow_wav
 const KeyList kHydroModels{"storm", "oscillating", "shallow_wave"};
 const KeyList kStormLoadKeys{"file",         "time_offset", "offset",   "update_interval", "ramp_time",
                              "between_updates", "wet_alpha", "element_size", "pressure", "variability",
-                             "drag",         "added_mass"};
+                             "drag",         "added_mass", "bed",      "bed_level",       "bed_tolerance"};
 const KeyList kVariabilityKeys{"enabled", "seed", "patches_per_axis"};
 const KeyList kDragKeys{"enabled", "coefficient"};
 const KeyList kOscillatingKeys{"amplitude", "period", "wave_number", "z_min", "z_swl", "z_max", "waves"};
 const KeyList kShallowWaveKeys{"amplitude", "angular_frequency", "angle_deg", "tan", "cot", "toe_x", "depth_at_toe",
                                "ray_spacing", "exposure_interval"};
+
+/// hydro.storm.bed, bed_level, bed_tolerance: what lies under units resting on the bed
+/// (docs/foam-bridge.md, "A unit on an impermeable bed"). The level defaults to the scene's one
+/// horizontal static plane.
+void readBed(const Block& s, const Scene& scene, hydro::BedSettings& bed) {
+  bed.kind = static_cast<hydro::BedKind>(s.choice("bed", {"porous", "impermeable"}, 0));
+  if (bed.kind == hydro::BedKind::Porous) {
+    const std::string why = "used only with bed: impermeable (a porous bed loads every surface element); remove it or "
+                            "set hydro.storm.bed: impermeable";
+    s.refuse("bed_level", why);
+    s.refuse("bed_tolerance", why);
+    return;
+  }
+  bed.toleranceDn = s.number("bed_tolerance", {"Dn", kUnitInterval, "0.01 (elements within 0.01 Dn of the bed)"},
+                             bed.toleranceDn);
+  if (s.has("bed_level")) {
+    bed.level = s.number("bed_level", {"m", kAnyNumber, "0: the z of the bed the units rest on"});
+    return;
+  }
+  std::vector<const StaticPlane*> level;
+  for (const StaticPlane& p : scene.statics.planes) {
+    if (p.normal.z() > 1.0 - 1e-9) level.push_back(&p);
+  }
+  if (level.size() != 1)
+    s.failMissing("bed_level", fmt::format("the z of the impermeable bed (m); it is taken from the scene's horizontal "
+                                           "static plane when there is exactly one, and the scene has {}",
+                                           level.size()));
+  bed.level = level.front()->point.z();
+}
 
 void readHydro(const Block& top, Scene& scene) {
   if (!top.has("hydro")) return;
@@ -729,6 +758,7 @@ void readHydro(const Block& top, Scene& scene) {
                                                                                          "Core-Loc)"},
                                    st.elementSizePerDn);
     st.pressure = s.flag("pressure", st.pressure);
+    readBed(s, scene, st.bed);
     const Block v(ctx, s.has("variability") ? s.get("variability") : YAML::Node(), "hydro.storm.variability",
                   kVariabilityKeys);
     st.variability.enabled = v.flag("enabled", st.variability.enabled);

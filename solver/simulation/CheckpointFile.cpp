@@ -4,6 +4,7 @@
 #include "core/AtomicFile.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
+#include "core/ProbeInChild.hpp"
 
 #include <fmt/format.h>
 #include <netcdf.h>
@@ -569,6 +570,11 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
 // ---------------------------------------------------------------------------------------------
 
 Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& expect) {
+  // A damaged file can crash libhdf5 inside nc_open: read it whole in a child first (one fork per
+  // restart; core/ProbeInChild.hpp). In the child this call reads it without a second probe.
+  core::probeInChild(path.string(), {"checkpoint", "restart from another checkpoint, or start the run anew without "
+                                                   "--restart"},
+                     [&] { (void)readCheckpoint(path, expect); });
   const Reader r(path);
   Checkpoint c;
   if (!r.hasAttribute(kVersionAttribute)) {

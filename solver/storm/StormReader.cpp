@@ -5,6 +5,7 @@
 #include "storm/StormFormat.hpp"
 
 #include "core/Error.hpp"
+#include "core/ProbeInChild.hpp"
 
 #include <fmt/format.h>
 #include <netcdf.h>
@@ -270,6 +271,16 @@ void StormReader::Impl::open() {
     core::failInput(path, "no such file; check the path (storm files are written by foam-bridge or `armour storm-file "
                           "synth`)");
   }
+  // libhdf5 1.10 can crash inside nc_open on damaged metadata: read the header and the first and
+  // last records in a child process first (core/ProbeInChild.hpp); a crash there refuses the file.
+  core::probeInChild(path, {"storm file", "regenerate it (foam-proxy sample, or armour storm-file synth) or copy it "
+                                          "again"},
+                     [this] {
+                       const StormReader probe(path); // in the child: no second probe
+                       StormRecord record;
+                       probe.read(0, record);
+                       probe.read(probe.times().size() - 1, record);
+                     });
   int id = -1;
   const int status = nc_open(path.c_str(), NC_NOWRITE, &id);
   if (status != NC_NOERR) {

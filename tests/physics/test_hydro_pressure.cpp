@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 using namespace armour;
@@ -344,6 +345,84 @@ TEST_F(HydroTest, OffsetPutsTheSceneIntoTheFilesCoordinates) {
   EXPECT_NEAR(held.force[b].z(), expected.force[a].z(), 5e-3 * expected.force[a].z());
   EXPECT_LT(std::abs(held.force[b].x()), 1e-3 * std::abs(expected.force[a].x()));
   EXPECT_EQ(unshifted.counters().skippedBodies, 0u);
+}
+
+TEST_F(HydroTest, ImpermeableBedTakesNoPressureUnderAUnitRestingOnIt) {
+  // A 1 m cube (Dn = 1 m, faces along the axes) resting on a bed at z = -5 m in still water whose
+  // surface is at z = 0 (h = 5 m over the bed, the box H = 1 m high, A = 1 m^2). Porous bed (the
+  // default): the bottom face carries rho g h A up, F_z = rho g V (Archimedes). Impermeable: the
+  // bottom face carries nothing and the top face, h - H down, pushes down: F_z = -rho g (h - H) A
+  // = -4 rho g; the side faces cancel in both. The midpoint rule integrates the linear field
+  // exactly on flat faces, so the bounds are Archimedes' (5e-3 of the force; measured round-off).
+  const std::string path = stillWater();
+  const double bedLevel = -5.0;
+  const double weightOfWater = kRho * kG; // rho g times 1 m^3 (N)
+  const auto loadsOf = [&](const Vec3& position, const Quat& q, hydro::BedKind kind, double offsetZ = 0.0) {
+    Scene scene;
+    const BodyId b = scene.add("cube", position, q);
+    hydro::StormLoadSettings s = settingsFor(path);
+    s.bed.kind = kind;
+    s.bed.level = bedLevel;
+    s.offsetZ = offsetZ;
+    StormLoads stage(scene.world, s, "all", path);
+    // The bottom face is what the switch drops: 1 m^2 of elements facing straight down.
+    double down = 0.0;
+    const hydro::SurfaceElements& el = stage.elements(scene.world.bodyShape(b));
+    for (std::size_t e = 0; e < el.size(); ++e) {
+      down += el.normal[e].z() < -0.99 ? el.area[e] : 0.0;
+    }
+    EXPECT_NEAR(down, 1.0, 1e-12) << "the cube's body frame has its faces along the axes";
+    const Loads l = applyAt(stage, scene.world, 0.0);
+    return std::make_pair(l.force[b], l.torque[b]);
+  };
+  const Vec3 resting(0.3, 0.0, bedLevel + 0.5);
+
+  const auto [porous, porousTorque] = loadsOf(resting, Quat::Identity(), hydro::BedKind::Porous);
+  EXPECT_NEAR(porous.z(), weightOfWater, 5e-3 * weightOfWater) << "porous: Archimedes";
+
+  const auto [sealed, sealedTorque] = loadsOf(resting, Quat::Identity(), hydro::BedKind::Impermeable);
+  const double expected = -kRho * kG * (5.0 - 1.0) * 1.0;
+  RecordProperty("impermeable_fz_relative_error", fmt::format("{:.3e}", sealed.z() / expected - 1.0));
+  EXPECT_NEAR(sealed.z(), expected, 5e-3 * std::abs(expected)) << "impermeable: only the top face, pushing down";
+  EXPECT_LT(std::hypot(sealed.x(), sealed.y()), 1e-3 * weightOfWater);
+  EXPECT_LT(sealedTorque.norm(), 1e-3 * weightOfWater * 1.0) << "a uniform top pressure has no moment";
+  // The difference is the bottom face's rho g h A, to round-off.
+  EXPECT_NEAR(porous.z() - sealed.z(), kRho * kG * 5.0, 1e-9 * kRho * kG * 5.0);
+
+  // Lifted 2 cm (2 % of Dn, beyond the 1 % band): water under it, the porous result.
+  const auto [lifted, liftedTorque] =
+      loadsOf(resting + Vec3(0.0, 0.0, 0.02), Quat::Identity(), hydro::BedKind::Impermeable);
+  EXPECT_NEAR(lifted.z(), weightOfWater, 5e-3 * weightOfWater) << "2 cm above the bed: loaded from below";
+
+  // Resting on an edge (turned 45 degrees about x): no face points within 26 degrees of straight
+  // down, so nothing is dropped and the impermeable bed gives the porous result exactly.
+  const Quat edge(Eigen::AngleAxisd(std::numbers::pi / 4.0, Vec3::UnitX()));
+  const Vec3 onEdge(0.3, 0.0, bedLevel + std::sqrt(0.5));
+  const auto [edgePorous, edgePorousTorque] = loadsOf(onEdge, edge, hydro::BedKind::Porous);
+  const auto [edgeSealed, edgeSealedTorque] = loadsOf(onEdge, edge, hydro::BedKind::Impermeable);
+  EXPECT_EQ(edgeSealed.z(), edgePorous.z());
+  EXPECT_NEAR(edgeSealed.z(), weightOfWater, 5e-3 * weightOfWater);
+
+  // The bed level is in the scene's coordinates: with hydro.storm.offset z = +1 m the scene's bed
+  // at -5 m lies at the file's -4 m, 4 m under the surface, and the top face 3 m: F_z = -3 rho g.
+  const auto [shifted, shiftedTorque] = loadsOf(resting, Quat::Identity(), hydro::BedKind::Impermeable, 1.0);
+  EXPECT_NEAR(shifted.z(), -3.0 * weightOfWater, 5e-3 * 3.0 * weightOfWater);
+}
+
+TEST_F(HydroTest, BadBedSettingsNameTheKey) {
+  const std::string path = stillWater();
+  Scene scene;
+  scene.add("cube", Vec3(0.0, 0.0, -3.0));
+  hydro::StormLoadSettings s = settingsFor(path);
+  s.bed.kind = hydro::BedKind::Impermeable;
+  s.bed.toleranceDn = 1.5;
+  try {
+    StormLoads stage(scene.world, s, "all", path);
+    ADD_FAILURE() << "a bed tolerance of 1.5 Dn was accepted";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hydro.storm.bed_tolerance: = 1.5 Dn: must lie in [0, 1]"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(HydroTest, FileUniformAlongYLoadsUnitsBeyondItsTrunkRange) {

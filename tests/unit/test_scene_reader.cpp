@@ -846,6 +846,45 @@ TEST(SceneHydro, ErrorsNameTheKeyAndTheFix) {
                   "give one of 'angle_deg' or 'tan' or 'cot'");
 }
 
+TEST(SceneHydro, BedIsPorousByDefaultAndImpermeableTakesItsLevel) {
+  // Default: porous (every element loaded), as before the switch existed.
+  const Scene porous = parseScene(oneBody() + "hydro:\n  storm: {file: s.nc}\n", kScenes, "wet.yaml");
+  EXPECT_EQ(porous.hydro.storm.bed.kind, armour::hydro::BedKind::Porous);
+  EXPECT_EQ(describeScene(porous).find("bed ="), std::string::npos)
+      << "the default is not printed: the checkpoint fingerprint of a porous-bed scene does not change";
+  // Impermeable with an explicit level and tolerance.
+  const Scene given = parseScene(
+      oneBody() + "hydro:\n  storm: {file: s.nc, bed: impermeable, bed_level: -2.5, bed_tolerance: 0.02}\n", kScenes,
+      "wet.yaml");
+  EXPECT_EQ(given.hydro.storm.bed.kind, armour::hydro::BedKind::Impermeable);
+  EXPECT_EQ(given.hydro.storm.bed.level, -2.5);
+  EXPECT_EQ(given.hydro.storm.bed.toleranceDn, 0.02);
+  EXPECT_CONTAINS(describeScene(given), "bed = impermeable, bed_level = -2.5 m, bed_tolerance = 0.02 Dn");
+  // Impermeable without a level: the scene's one horizontal static plane (walls do not count).
+  const Scene plane = parseScene(oneBody() + "static:\n  - {type: plane, material: concrete, point: [0, 0, 0.75]}\n"
+                                             "  - {type: wall, material: concrete, axis: x, position: -3, side: min}\n"
+                                             "hydro:\n  storm: {file: s.nc, bed: impermeable}\n",
+                                 kScenes, "wet.yaml");
+  EXPECT_EQ(plane.hydro.storm.bed.level, 0.75);
+  EXPECT_EQ(plane.hydro.storm.bed.toleranceDn, 0.01) << "the default tolerance";
+}
+
+TEST(SceneHydro, BedErrorsNameTheKeyTheValueAndTheFix) {
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, bed: sealed}\n"),
+                  "hydro.storm.bed = sealed: expected one of porous, impermeable");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, bed_level: 0}\n"),
+                  "hydro.storm.bed_level: used only with bed: impermeable");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, bed: impermeable, bed_level: 0, "
+                                        "bed_tolerance: -0.1}\n"),
+                  "hydro.storm.bed_tolerance = -0.1: must be in [0, 1]");
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, bed: impermeable, bed_level: .nan}\n"),
+                  "hydro.storm.bed_level");
+  // No level and no horizontal plane to take it from.
+  EXPECT_CONTAINS(errorFrom(oneBody() + "hydro:\n  storm: {file: s.nc, bed: impermeable}\n"),
+                  "missing key 'bed_level': the z of the impermeable bed (m); it is taken from the scene's horizontal "
+                  "static plane when there is exactly one, and the scene has 0");
+}
+
 // --set KEY=VALUE (io/SceneOverrides): a changed setting reads as if the file said it; missing
 // blocks are created; list items are reached by index; bad paths and values name the option.
 std::string overrideError(const std::string& yaml, const std::vector<std::string>& sets) {
