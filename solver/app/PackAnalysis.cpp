@@ -69,6 +69,26 @@ std::vector<double> underlayerTopsUnder(const io::Scene& scene, const simulation
   return tops;
 }
 
+/// The mean slope-normal top (frame coordinates, m) of the support bodies whose centroids project
+/// into the window; 0, the frame plane, if none does.
+double meanSupportTop(const io::Scene& scene, const simulation::BuiltScene& built, const std::vector<std::size_t>& units,
+                      const analysis::SlopeFrame& frame, const analysis::SlopeWindow& window) {
+  const simulation::World& world = *built.world;
+  std::vector<bool> isUnit(scene.bodies.size(), false);
+  for (std::size_t i : units) isUnit[i] = true;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const auto b = built.bodyIndexOfSceneBody[i];
+    if (isUnit[i] || !window.contains(frame, world.bodies().position(b))) continue;
+    geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
+    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
+    sum += analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y();
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
 } // namespace
 
 PoseMap posesOf(const io::Scene& scene) {
@@ -224,8 +244,14 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
       t0 = std::min(t0, l.y());
       t1 = std::max(t1, l.y());
     }
+    // The layer's base: the mean top of the support bodies (the rocks) in the window, as
+    // armour place measures it (placement.txt), or the slope face where there are none.
+    const analysis::SlopeWindow window{s0, s1 + 1e-9, t0, t1 + 1e-9};
+    r.underlayerTop = meanSupportTop(scene, built, units, r.frame, window);
+    std::vector<double> aboveUnderlayer = tops;
+    for (double& t : aboveUnderlayer) t -= r.underlayerTop;
     try {
-      r.thickness = analysis::layerThickness(positions, tops, dn, r.frame, {s0, s1 + 1e-9, t0, t1 + 1e-9});
+      r.thickness = analysis::layerThickness(positions, aboveUnderlayer, dn, r.frame, window);
       double volume = 0.0;
       for (double d : dn) volume += d * d * d;
       r.porosity = 1.0 - volume / (r.packingHull.area * r.thickness->thickness);
@@ -284,8 +310,9 @@ std::string packText(const PackReport& r) {
     t += fmt::format("packing density     {:.4f} over the hull of the centroids ({:.1f} m^2)\n", r.packingHull.phi,
                      r.packingHull.area);
   if (r.thickness)
-    t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}), porosity {:.3f}\n", r.thickness->thickness,
-                     r.thickness->layerCoefficient, r.porosity);
+    t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}) above the underlayer's mean top ({:.3f} m "
+                     "above the slope face), porosity {:.3f}\n",
+                     r.thickness->thickness, r.thickness->layerCoefficient, r.underlayerTop, r.porosity);
   const double count = static_cast<double>(std::max<std::size_t>(r.units.size(), 1));
   t += fmt::format("underlayer          {} units touch it ({:.3f}); {} stacked ({:.3f}: no support touched, centroid "
                    "> 1 Dn above the underlayer)\n",
@@ -337,6 +364,7 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
                      json(r.packingHull.area));
     o << fmt::format("  \"layer_thickness_m\": {},\n  \"porosity\": {},\n", json(r.thickness ? r.thickness->thickness : NAN),
                      json(r.thickness ? r.porosity : NAN));
+    o << fmt::format("  \"underlayer_mean_top_m\": {},\n", json(r.underlayerTop));
     o << fmt::format("  \"units_touching_underlayer\": {},\n  \"stacked_units\": {}", r.touchingUnderlayer,
                      r.stackedUnits);
     if (r.displacement) {

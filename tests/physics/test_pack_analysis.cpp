@@ -106,7 +106,8 @@ TEST(PackAnalysis, StateFilesAreReadOrRefusedWithTheLine) {
 }
 
 TEST(PackAnalysis, UnitsOnTheUnderlayerAndStackedUnitsAreCounted) {
-  // 1 m cubes lying on a 1:2 slope (faces 1 mm into what they rest on): c0 and c1 on the face, c2
+  // 1 m cubes lying on a 1:2 slope (faces 1 mm into what they rest on; c1 9 m up the face and 1.5 m along the trunk
+  // one way, the rock and c3 the other): c0 and c1 on the face, c2
   // on c0 (centroid 1.5 Dn above the face, touching no support: stacked), and c3 on a fixed 0.5 m
   // rock (touching a support; 0.5 Dn above the rock's top, 1 Dn above the face: not stacked).
   const std::string yaml = R"(
@@ -115,10 +116,10 @@ materials:
   concrete: {density: 2400, friction: 0.7, restitution: 0.1}
 bodies:
   - {name: c0, shape: cube, dn: 1, material: concrete, position: [2.460122, 0, 1.78796], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: c1, shape: cube, dn: 1, material: concrete, position: [4.69619, 0, 2.905994], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c1, shape: cube, dn: 1, material: concrete, position: [7.826685, 1.5, 4.471242], orientation: {euler_deg: [0, -26.565051, 0]}}
   - {name: c2, shape: cube, dn: 1, material: concrete, position: [2.013356, 0, 2.681493], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: rock, shape: cube, dn: 0.5, material: concrete, fixed: true, position: [7.491275, 0, 4.024028], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: c3, shape: cube, dn: 1, material: concrete, position: [7.156759, 0, 4.693059], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: rock, shape: cube, dn: 0.5, material: concrete, fixed: true, position: [7.491275, -1.5, 4.024028], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c3, shape: cube, dn: 1, material: concrete, position: [7.156759, -1.5, 4.693059], orientation: {euler_deg: [0, -26.565051, 0]}}
 static:
   - {type: slope, name: underlayer, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 10}
 )";
@@ -135,4 +136,10 @@ static:
   EXPECT_EQ(r.touchingUnderlayer, 3u); // c0, c1 (the slope) and c3 (the rock)
   EXPECT_EQ(r.stackedUnits, 1u);
   EXPECT_NE(app::packText(r).find("3 units touch it (0.750); 1 stacked (0.250"), std::string::npos) << app::packText(r);
+  // The layer thickness stands on the underlayer's mean top, here the one rock's (0.499 m above
+  // the face), as armour place measures it: the units' mean top (0.999, 0.999, 1.998, 1.497 m)
+  // less 0.499 m.
+  EXPECT_NEAR(r.underlayerTop, 0.499, 1e-4);
+  ASSERT_TRUE(r.thickness.has_value());
+  EXPECT_NEAR(r.thickness->thickness, (0.999 + 0.999 + 1.998 + 1.497) / 4.0 - 0.499, 1e-4);
 }
