@@ -13,7 +13,7 @@ namespace armour::hydro {
 void ShallowWaveForce::validate(const ShallowWaveForceSettings& s) {
   core::requireFinite(s.amplitude, "hydro.shallow_wave.amplitude", "N");
   core::requireFinite(s.angularFrequency, "hydro.shallow_wave.angular_frequency", "rad/s");
-  core::requireFinite(s.slopeAngle, "hydro.shallow_wave.slope_angle", "rad");
+  core::requireFinite(s.slopeAngle, "hydro.shallow_wave.angle_deg", "rad");
   core::requireFinite(s.toeX, "hydro.shallow_wave.toe_x", "m");
   core::requireFinite(s.depthAtToe, "hydro.shallow_wave.depth_at_toe", "m");
   core::requireFinite(s.raySpacing, "hydro.shallow_wave.ray_spacing", "m");
@@ -23,8 +23,9 @@ void ShallowWaveForce::validate(const ShallowWaveForceSettings& s) {
                     s.angularFrequency);
   }
   if (!(s.slopeAngle > 0.0 && s.slopeAngle < 0.5 * std::numbers::pi)) {
-    core::failInput("hydro.shallow_wave.slope_angle", "{} rad: must lie between 0 and pi/2 (a slope rising onshore; "
-                    "1:2 is atan(0.5) = 0.4636 rad); is it in degrees?", s.slopeAngle);
+    // The scene gives the slope as angle_deg, tan or cot (SceneReader); name the key it reads.
+    core::failInput("hydro.shallow_wave.angle_deg", "{} deg: the slope must lie between 0 and 90 deg (a slope rising "
+                    "onshore; 1:2 is 26.57 deg, or give tan: 0.5 or cot: 2)", s.slopeAngle * 180.0 / std::numbers::pi);
   }
   if (!(s.depthAtToe > 0.0)) {
     core::failInput("hydro.shallow_wave.depth_at_toe", "{} m: the water depth at the toe must be positive",

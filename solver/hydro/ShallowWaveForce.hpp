@@ -43,7 +43,7 @@ public:
                    const std::string& bodies = "all");
 
   /// Checks finite values, 0 < th < pi/2, d0 > 0, w > 0, spacing >= 0 and interval >= 0; errors
-  /// name the scene keys hydro.shallow_wave.amplitude, .angular_frequency, .slope_angle, .toe_x,
+  /// name the scene keys hydro.shallow_wave.amplitude, .angular_frequency, .angle_deg, .toe_x,
   /// .depth_at_toe, .ray_spacing, .exposure_interval.
   static void validate(const ShallowWaveForceSettings& settings);
 

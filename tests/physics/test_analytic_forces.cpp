@@ -586,8 +586,9 @@ TEST(AnalyticForces, BadSettingsNameTheKey) {
     change(s);
     expectInputError([&] { const ShallowWaveForce stage(scene.world, s); }, key);
   };
-  sw([](auto& s) { s.slopeAngle = 26.6; }, "hydro.shallow_wave.slope_angle"); // degrees by mistake
-  sw([](auto& s) { s.slopeAngle = 0.0; }, "hydro.shallow_wave.slope_angle");
+  // The slope is read as angle_deg (or tan, cot): the error names the key the reader accepts.
+  sw([](auto& s) { s.slopeAngle = 26.6; }, "hydro.shallow_wave.angle_deg"); // degrees by mistake
+  sw([](auto& s) { s.slopeAngle = 0.0; }, "hydro.shallow_wave.angle_deg");
   sw([](auto& s) { s.depthAtToe = 0.0; }, "hydro.shallow_wave.depth_at_toe");
   sw([](auto& s) { s.angularFrequency = -1.0; }, "hydro.shallow_wave.angular_frequency");
   sw([](auto& s) { s.toeX = std::nan(""); }, "hydro.shallow_wave.toe_x");

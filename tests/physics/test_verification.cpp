@@ -289,46 +289,55 @@ TEST(Tunnelling, WithoutTheGuardRailAThinWallIsPassed) {
 
 TEST(Tunnelling, ThinFixedBodyIsNotRefusedAtAGentleTouch) {
   // A cube pushed at 1 m/s against a 0.02 m fixed slab overlaps it by about 1 mm at most
-  // (v sqrt(m / K)), a tenth of the slab's half thickness: it must simply be stopped. A solver that
-  // cannot represent the slab (its level-set cells, Dn / 24 = 0.029 m, are wider than the slab) may
-  // instead refuse the shape when it is added, with an input error that says so; what it must not do
-  // is refuse the run at the first touch, as it did when the tunnelling guard took the slab's inner
-  // depth from its level-set nodes (-min phi): no node lay inside the slab, the "inner depth" came
-  // out negative (-0.00425 m) and any overlap tripped the guard. (Now the slab is refused as input.)
+  // (v sqrt(m / K)), a tenth of the slab's half thickness: it must simply be stopped. Once the
+  // tunnelling guard took the slab's inner depth from its level-set nodes (-min phi) and, with no
+  // node inside the slab, refused the run at the first touch. Two checks, at the default 24 cells
+  // per Dn:
+  //  1. A 0.02 x 4 x 4 m slab (Dn 0.68 m, cells 0.028 m, no node inside) is refused when it is
+  //     added, naming the shape and the resolution that would hold it.
+  //  2. A 0.02 x 1.2 x 1.2 m slab (Dn 0.31 m, cells 0.013 m: nodes inside) is accepted; the run
+  //     goes on and the cube is sent back.
   WorldSettings settings;
   settings.gravity = Vec3::Zero();
   settings.sleep.enabled = false;
-  World world(settings);
-  const MaterialId material = world.addMaterial(Material{});
+  {
+    World refusing(settings);
+    try {
+      refusing.addShape("slab", test::makeBox(0.02, 4.0, 4.0));
+      ADD_FAILURE() << "a 0.02 m slab with cells of 0.028 m must be refused as input";
+    } catch (const core::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("shape 'slab'"), std::string::npos) << what;
+      EXPECT_NE(what.find("too thin for its level set"), std::string::npos) << what;
+      EXPECT_NE(what.find("raise contact.level_set_cells_per_dn to at least"), std::string::npos) << what;
+    }
+  }
+  auto world = std::make_unique<World>(settings);
+  const MaterialId material = world->addMaterial(Material{});
   geometry::ShapeRequest unit;
   unit.volume = 1.0;
-  const ShapeId cube = world.addShape("cube", geometry::makeShape("cube", unit));
-  try {
-    const ShapeId slab = world.addShape("slab", test::makeBox(0.02, 4.0, 4.0));
-    BodySpec wall;
-    wall.name = "slab";
-    wall.shape = slab;
-    wall.material = material;
-    wall.fixed = true;
-    wall.position = Vec3(0.01, 0.0, 0.0);
-    world.addBody(wall);
-  } catch (const core::InputError& e) {
-    SUCCEED() << "the thin slab was refused as input: " << e.what();
-    return;
-  }
+  const ShapeId cube = world->addShape("cube", geometry::makeShape("cube", unit));
+  BodySpec wall;
+  wall.name = "slab";
+  wall.shape = world->addShape("slab", test::makeBox(0.02, 1.2, 1.2));
+  wall.material = material;
+  wall.fixed = true;
+  wall.position = Vec3(0.01, 0.0, 0.0);
+  world->addBody(wall);
   BodySpec spec;
   spec.name = "cube";
   spec.shape = cube;
   spec.material = material;
   spec.position = Vec3(-0.52, 0.0, 0.0);
   spec.velocity = Vec3(1.0, 0.0, 0.0);
-  const BodyId b = world.addBody(spec);
+  const BodyId b = world->addBody(spec);
   try {
-    world.advanceTo(0.2);
+    world->advanceTo(0.2);
   } catch (const SimulationError& e) {
     ADD_FAILURE() << "a 1 m/s touch was refused: " << e.what();
   }
-  EXPECT_LT(world.bodies().velocity(b).x(), 0.0) << "the cube must be sent back";
+  EXPECT_LT(world->bodies().velocity(b).x(), 0.0) << "the cube must be sent back";
+  EXPECT_LT(world->bodies().position(b).x(), 0.0) << "the cube must stay on its side of the slab";
 }
 
 TEST(ContactDetection, OverlappingDolosseAreFoundWhenACentroidLiesOutsideTheOtherLevelSet) {
