@@ -3,6 +3,8 @@
 
 #include "core/Error.hpp"
 
+#include <fmt/format.h>
+
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -115,13 +117,16 @@ void probeInChild(const std::string& path, const ProbeMessage& message, const st
       return; // the child is gone (reaped by a SIGCHLD handler): nothing to tell, read in-process
     }
   }
+  // netCDF files (the default) are inspected with the netCDF and HDF5 tools; others say how.
+  const bool netcdf = message.inspect.empty();
+  const std::string inspect = netcdf ? fmt::format("inspect it with `ncdump -h {}` or `h5dump -H {}`", path, path)
+                                     : message.inspect;
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
     // Not ours (the child exits 0 whatever the probe did): a library called exit(), or a
     // sanitizer reported a memory error (AddressSanitizer exits with 1 by default).
     failInput(path, "reading this {} ended the child process that armour starts to read it safely with exit code {} "
-                    "(a library or a sanitizer stopped it): the file is probably damaged; {}; inspect it with "
-                    "`ncdump -h {}` or `h5dump -H {}`",
-              message.kind, WEXITSTATUS(status), message.fix, path, path);
+                    "(a library or a sanitizer stopped it): the file is probably damaged; {}; {}",
+              message.kind, WEXITSTATUS(status), message.fix, inspect);
   }
   if (!WIFSIGNALED(status)) {
     return;
@@ -131,17 +136,21 @@ void probeInChild(const std::string& path, const ProbeMessage& message, const st
     return; // an interruption, not the file: the caller's stop handling sees it too
   }
   if (signal == SIGALRM) {
-    failInput(path, "reading this {} did not finish in {} s (tried in a child process, which was stopped): its HDF5 "
-                    "structure is probably damaged (metadata that loops), or the file system stalls; {}; inspect it "
-                    "with `ncdump -h {}` or `h5dump -H {}`",
-              message.kind, seconds, message.fix, path, path);
+    failInput(path, "reading this {} did not finish in {} s (tried in a child process, which was stopped): {}, or the "
+                    "file system stalls; {}; {}",
+              message.kind, seconds,
+              netcdf ? "its HDF5 structure is probably damaged (metadata that loops)"
+                     : "the file is probably damaged (a size or a count that makes the reader loop or allocate without end)",
+              message.fix, inspect);
   }
   const std::string said = lastLine(output);
-  failInput(path, "reading this {} crashed the netCDF/HDF5 library with signal {} ({}) in a child process that armour "
-                  "starts to read it safely{}: the file's HDF5 structure is damaged (a disk fault or a broken copy); "
-                  "{}; inspect it with `ncdump -h {}` or `h5dump -H {}` (Debian: netcdf-bin, hdf5-tools)",
-            message.kind, signal, strsignal(signal), said.empty() ? std::string() : " (the library said: '" + said + "')",
-            message.fix, path, path);
+  failInput(path, "reading this {} crashed the {} library with signal {} ({}) in a child process that armour starts to "
+                  "read it safely{}: {}; {}; {}{}",
+            message.kind, message.library, signal, strsignal(signal),
+            said.empty() ? std::string() : " (the library said: '" + said + "')",
+            netcdf ? "the file's HDF5 structure is damaged (a disk fault or a broken copy)"
+                   : "the file is damaged (a disk fault, a broken copy or a bad export)",
+            message.fix, inspect, netcdf ? " (Debian: netcdf-bin, hdf5-tools)" : "");
 }
 
 } // namespace armour::core

@@ -41,6 +41,9 @@ constexpr unsigned kProbeSeconds = 60;
 struct ProbeMessage {
   std::string kind; ///< "storm file", "checkpoint", ... (unit: -)
   std::string fix;  ///< what the user should do, e.g. "regenerate the storm file (...) or copy it again"
+  std::string library = "netCDF/HDF5"; ///< the library that reads it, named when it crashes
+  /// How to inspect the file; empty: the netCDF tools (`ncdump -h`, `h5dump -H`).
+  std::string inspect;
 };
 
 /// Run `probe` (which should open `path` and read what the caller will read) in a forked child.

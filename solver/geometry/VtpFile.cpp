@@ -2,6 +2,7 @@
 #include "geometry/VtpFile.hpp"
 
 #include "core/Error.hpp"
+#include "core/ProbeInChild.hpp"
 #include "geometry/VtkSupport.hpp"
 
 #include <vtkCellArray.h>
@@ -45,6 +46,19 @@ TriangleMesh readVtp(const std::filesystem::path& path) {
     core::failInput(path.string(), "cannot open the mesh file; check the path");
   }
   checkComponentCounts(path);
+  // VTK 9.1 crashes (SIGSEGV in vtkXMLDataParser::ReadBlock) on damaged compressed appended data,
+  // or allocates tens of GB for a corrupt size (tests/fuzz/upstream): read it in a child first.
+  // 30 s is mine: a unit's mesh file reads in well under a second.
+  core::probeInChild(path.string(),
+                     {"mesh file", "re-export it from ParaView or `armour shape export`", "VTK",
+                      "open it in ParaView, or check its XML header with `head -c 2000`"},
+                     [&] {
+                       VtkMessageCapture quiet;
+                       vtkNew<vtkXMLPolyDataReader> probe;
+                       probe->SetFileName(path.c_str());
+                       probe->Update();
+                     },
+                     30);
   VtkMessageCapture messages;
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(path.c_str());

@@ -145,3 +145,19 @@ TEST(MeshFormats, Names) {
     EXPECT_NE(std::string(e.what()).find("stl, stl-ascii, obj or vtp"), std::string::npos);
   }
 }
+
+TEST(MeshFilesInAChild, DamagedCompressedVtpIsRefusedInsteadOfCrashingVtk) {
+  // VTK 9.1 dies with SIGSEGV in vtkXMLDataParser::ReadBlock on this compressed .vtp with flipped
+  // bytes (tests/fuzz/upstream, found by the fuzz pass). readVtp reads it in a child first: the
+  // crash becomes an input error naming the file, the library, the signal and the fix.
+  const std::string path = std::string(ARMOUR_TEST_DATA) + "/../fuzz/upstream/vtk-9.1-readblock-sigsegv.vtp";
+  try {
+    (void)armour::geometry::readMesh(path);
+    FAIL() << "the damaged .vtp was read";
+  } catch (const armour::core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("vtk-9.1-readblock-sigsegv.vtp"), std::string::npos) << what;
+    EXPECT_NE(what.find("crashed the VTK library with signal 11"), std::string::npos) << what;
+    EXPECT_NE(what.find("re-export it"), std::string::npos) << what;
+  }
+}
