@@ -52,8 +52,7 @@ double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
 } // namespace
 
 bool SlopeWindow::contains(const SlopeFrame& frame, const Eigen::Vector3d& point) const {
-  const Eigen::Vector3d local = frame.toLocal(point);
-  return local.x() >= s0 && local.x() < s1 && local.y() >= t0 && local.y() < t1;
+  return containsLocal(frame.toLocal(point));
 }
 
 double packingDensity(std::size_t count, double dn, double area) {

@@ -46,6 +46,10 @@ struct SlopeWindow {
   [[nodiscard]] double area() const { return (s1 - s0) * (t1 - t0); } ///< (unit: m^2)
   /// True when the point's projection on the slope plane falls in the window.
   [[nodiscard]] bool contains(const SlopeFrame& frame, const Eigen::Vector3d& point) const;
+  /// The same for a point already in frame coordinates (s, t, n).
+  [[nodiscard]] bool containsLocal(const Eigen::Vector3d& local) const {
+    return local.x() >= s0 && local.x() < s1 && local.y() >= t0 && local.y() < t1;
+  }
 };
 
 /// phi = count Dn^2 / area. Throws core::InputError for a non-positive Dn or area.

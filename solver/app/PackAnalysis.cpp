@@ -37,56 +37,58 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
-/// For each unit, the slope-normal top (frame coordinates, m) of the underlayer under it: the
-/// highest top of the support bodies (fixed bodies and bodies not named as units: the rocks) whose
-/// centroids project within 1 Dn of the unit's in the slope plane; 0, the frame plane, where none does.
-std::vector<double> underlayerTopsUnder(const io::Scene& scene, const simulation::BuiltScene& built,
-                                        const std::vector<std::size_t>& units,
-                                        const std::vector<Eigen::Vector3d>& positions, const std::vector<double>& dn,
-                                        const analysis::SlopeFrame& frame) {
-  const simulation::World& world = *built.world;
+/// The slope-normal height (frame coordinates, m) of a body's highest point: its mesh (principal
+/// frame at scale 1) scaled and placed at the body's pose.
+double topOf(const simulation::World& world, simulation::BodyId b, const analysis::SlopeFrame& frame) {
+  geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
+  for (auto& v : mesh.vertices) v *= world.bodyScale(b);
+  return analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y();
+}
+
+/// The support bodies (every body that is not a unit: the rocks), where they sit and how high.
+struct Supports {
+  std::vector<Eigen::Vector3d> local; ///< centroids in the slope frame (s, t, n) (unit: m)
+  std::vector<double> top;            ///< highest points' n (unit: m)
+};
+
+Supports supportsOf(const io::Scene& scene, const simulation::BuiltScene& built, const std::vector<std::size_t>& units,
+                    const analysis::SlopeFrame& frame) {
   std::vector<bool> isUnit(scene.bodies.size(), false);
   for (std::size_t i : units) isUnit[i] = true;
-  std::vector<Eigen::Vector3d> supportLocal;
-  std::vector<double> supportTop;
+  Supports out;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (isUnit[i]) continue;
     const auto b = built.bodyIndexOfSceneBody[i];
-    geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
-    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
-    supportLocal.push_back(frame.toLocal(world.bodies().position(b)));
-    supportTop.push_back(analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y());
+    out.local.push_back(frame.toLocal(built.world->bodies().position(b)));
+    out.top.push_back(topOf(*built.world, b, frame));
   }
-  std::vector<double> tops(units.size(), 0.0);
-  for (std::size_t k = 0; k < units.size(); ++k) {
-    const Eigen::Vector3d l = frame.toLocal(positions[k]);
-    for (std::size_t j = 0; j < supportLocal.size(); ++j) {
-      if (std::hypot(supportLocal[j].x() - l.x(), supportLocal[j].y() - l.y()) < dn[k]) {
-        tops[k] = std::max(tops[k], supportTop[j]);
-      }
-    }
-  }
-  return tops;
+  return out;
 }
 
-/// The mean slope-normal top (frame coordinates, m) of the support bodies whose centroids project
-/// into the window; 0, the frame plane, if none does.
-double meanSupportTop(const io::Scene& scene, const simulation::BuiltScene& built, const std::vector<std::size_t>& units,
-                      const analysis::SlopeFrame& frame, const analysis::SlopeWindow& window) {
-  const simulation::World& world = *built.world;
-  std::vector<bool> isUnit(scene.bodies.size(), false);
-  for (std::size_t i : units) isUnit[i] = true;
+/// The mean top of the supports whose centroids project into the window; 0, the frame plane, if
+/// none does (unit: m).
+double meanTopIn(const Supports& supports, const analysis::SlopeWindow& window) {
   double sum = 0.0;
   std::size_t count = 0;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const auto b = built.bodyIndexOfSceneBody[i];
-    if (isUnit[i] || !window.contains(frame, world.bodies().position(b))) continue;
-    geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
-    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
-    sum += analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y();
-    ++count;
+  for (std::size_t j = 0; j < supports.top.size(); ++j) {
+    if (window.containsLocal(supports.local[j])) {
+      sum += supports.top[j];
+      ++count;
+    }
   }
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+/// The highest top of the supports whose centroids lie within `radius` of `local` in the slope
+/// plane; 0, the frame plane, if none does (unit: m).
+double highestTopNear(const Supports& supports, const Eigen::Vector3d& local, double radius) {
+  double top = 0.0;
+  for (std::size_t j = 0; j < supports.top.size(); ++j) {
+    if (std::hypot(supports.local[j].x() - local.x(), supports.local[j].y() - local.y()) < radius) {
+      top = std::max(top, supports.top[j]);
+    }
+  }
+  return top;
 }
 
 } // namespace
@@ -228,13 +230,8 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     }
   }
   std::vector<double> tops;
-  for (std::size_t k = 0; k < units.size(); ++k) {
-    const auto b = built.bodyIndexOfSceneBody[units[k]];
-    const auto& model = world.shape(world.bodyShape(b));
-    geometry::TriangleMesh mesh = model.mesh; // principal frame at scale 1: scale it, use the body orientation
-    for (auto& v : mesh.vertices) v *= world.bodyScale(b);
-    tops.push_back(analysis::normalExtent(mesh, positions[k], world.bodies().orientation(b), r.frame).y());
-  }
+  for (std::size_t i : units) tops.push_back(topOf(world, built.bodyIndexOfSceneBody[i], r.frame));
+  const Supports supports = supportsOf(scene, built, units, r.frame);
   if (r.frameFromSlope && r.packingHull.area > 0.0) {
     double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, t0 = s0, t1 = -s0;
     for (const auto& p : positions) {
@@ -247,7 +244,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     // The layer's base: the mean top of the support bodies (the rocks) in the window, as
     // armour place measures it (placement.txt), or the slope face where there are none.
     const analysis::SlopeWindow window{s0, s1 + 1e-9, t0, t1 + 1e-9};
-    r.underlayerTop = meanSupportTop(scene, built, units, r.frame, window);
+    r.underlayerTop = meanTopIn(supports, window);
     std::vector<double> aboveUnderlayer = tops;
     for (double& t : aboveUnderlayer) t -= r.underlayerTop;
     try {
@@ -271,7 +268,6 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     r.displacement = analysis::measureDisplacement(before, positions, qBefore, orientations, dn, r.frame,
                                                    settings.displacement);
   }
-  const std::vector<double> underlayer = underlayerTopsUnder(scene, built, units, positions, dn, r.frame);
   for (std::size_t k = 0; k < units.size(); ++k) {
     UnitRow row;
     row.name = scene.bodies[units[k]].name;
@@ -285,7 +281,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     row.unitNeighbours = c.unitNeighbours;
     row.supportNeighbours = c.supportNeighbours;
     row.maxContactForce = c.maxForce;
-    row.heightAboveUnderlayer = (row.local.z() - underlayer[k]) / dn[k];
+    row.heightAboveUnderlayer = (row.local.z() - highestTopNear(supports, row.local, dn[k])) / dn[k];
     row.stacked = c.supportNeighbours == 0 && row.heightAboveUnderlayer > 1.0;
     r.touchingUnderlayer += c.supportNeighbours > 0 ? 1 : 0;
     r.stackedUnits += row.stacked ? 1 : 0;

@@ -78,6 +78,27 @@ DampingByExponent dampingByExponentFromRestitution(double restitution);
 /// a force.
 double contactExponent(double force, double stiffness, double energy);
 
+/// What the penalty law needs of a pair's engaged points besides each point itself: the sums that
+/// give its exponent (contactExponent) and, weighted by stiffness, its centre and normal (for the
+/// effective mass at the contact). Both contact models fill it, point by point.
+struct PatchSums {
+  double stiffness = 0.0;      ///< K, summed over every point the model reports (unit: N/m)
+  double force = 0.0;          ///< sum k d over the engaged points (unit: N)
+  double energy = 0.0;         ///< elastic energy of the engaged points (unit: J)
+  double weight = 0.0;         ///< sum k over the engaged points (unit: N/m)
+  Vec3 centre = Vec3::Zero();  ///< sum k x (unit: N)
+  Vec3 normal = Vec3::Zero();  ///< sum k n (unit: N/m)
+  /// An engaged point of stiffness k, depth d > 0 and elastic energy u at `point`, normal `n`.
+  void addEngaged(double k, double d, double u, const Vec3& point, const Vec3& n) {
+    force += k * d;
+    energy += u;
+    weight += k;
+    centre += k * point;
+    normal += k * n;
+  }
+  [[nodiscard]] double exponent() const { return contactExponent(force, stiffness, energy); }
+};
+
 /// What a point remembers between steps.
 /// The penalty law uses the spring; the constraint solver (ContactSolver.hpp) the impulses, its
 /// warm start. Both live here so that sleep islands and checkpoints see one contact history.

@@ -119,14 +119,15 @@ void probeInChild(const std::string& path, const ProbeMessage& message, const st
   }
   // netCDF files (the default) are inspected with the netCDF and HDF5 tools; others say how.
   const bool netcdf = message.inspect.empty();
-  const std::string inspect = netcdf ? fmt::format("inspect it with `ncdump -h {}` or `h5dump -H {}`", path, path)
-                                     : message.inspect;
+  const auto inspect = [&] {
+    return netcdf ? fmt::format("inspect it with `ncdump -h {}` or `h5dump -H {}`", path, path) : message.inspect;
+  };
   if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
     // Not ours (the child exits 0 whatever the probe did): a library called exit(), or a
     // sanitizer reported a memory error (AddressSanitizer exits with 1 by default).
     failInput(path, "reading this {} ended the child process that armour starts to read it safely with exit code {} "
                     "(a library or a sanitizer stopped it): the file is probably damaged; {}; {}",
-              message.kind, WEXITSTATUS(status), message.fix, inspect);
+              message.kind, WEXITSTATUS(status), message.fix, inspect());
   }
   if (!WIFSIGNALED(status)) {
     return;
@@ -141,7 +142,7 @@ void probeInChild(const std::string& path, const ProbeMessage& message, const st
               message.kind, seconds,
               netcdf ? "its HDF5 structure is probably damaged (metadata that loops)"
                      : "the file is probably damaged (a size or a count that makes the reader loop or allocate without end)",
-              message.fix, inspect);
+              message.fix, inspect());
   }
   const std::string said = lastLine(output);
   failInput(path, "reading this {} crashed the {} library with signal {} ({}) in a child process that armour starts to "
@@ -150,7 +151,7 @@ void probeInChild(const std::string& path, const ProbeMessage& message, const st
             said.empty() ? std::string() : " (the library said: '" + said + "')",
             netcdf ? "the file's HDF5 structure is damaged (a disk fault or a broken copy)"
                    : "the file is damaged (a disk fault, a broken copy or a bad export)",
-            message.fix, inspect, netcdf ? " (Debian: netcdf-bin, hdf5-tools)" : "");
+            message.fix, inspect(), netcdf ? " (Debian: netcdf-bin, hdf5-tools)" : "");
 }
 
 } // namespace armour::core

@@ -19,7 +19,7 @@ BodySeriesReader::BodySeriesReader(const fs::path& path) : path_(path) {
     core::failInput(path.string(), "missing: the run folder has no body series; give the output folder of a run "
                                    "(`armour run` writes bodies.nc there when output.series_interval > 0)");
   // A damaged file can crash libhdf5 inside nc_open: read it in a child first (core/ProbeInChild.hpp).
-  core::probeInChild(path.string(), {"body series file", "rerun the scene, or restart it from its checkpoint"}, [&] {
+  core::probeInChild(path.string(), {"body series file", "move it away (a restart from the checkpoint then starts the series anew) or rerun the scene"}, [&] {
     const BodySeriesReader probe(path); // in the child: no second probe
     std::vector<double> values;
     probe.positions(probe.records() - 1, 1, values);

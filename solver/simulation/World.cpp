@@ -19,10 +19,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <mutex>
-#include <map>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 namespace armour::simulation {
 

@@ -340,12 +340,11 @@ private:
   /// The fdem narrow phase and law of one pair (WorldContacts.cpp): fills pw like the level-set path.
   void fdemPairForces(PairWork& pw, double dt) const;
   /// The pair's effective mass along its contact normal at its contact centre, rotation included:
-  /// 1 / (1/m_a + (r_a x n) . I_a^-1 (r_a x n) + the same for b), b absent for static geometry
-  /// (rigid-body impact theory). `point` and `normal` are stiffness-weighted sums over the engaged
-  /// points (the normal need not be unit; a sum shorter than 0.5 of its weight, points pushing
-  /// opposite ways, falls back to the masses alone) (unit: kg).
-  [[nodiscard]] double pairEffectiveMass(BodyId a, std::int64_t b, const Vec3& point, const Vec3& normal,
-                                         double weight) const;
+  /// 1 / (1/m_a + (r_a x n) . I_a^-1 (r_a x n) + the same for b), b absent (-1) for static geometry
+  /// (rigid-body impact theory), with the centre and normal the stiffness-weighted means of the
+  /// engaged points; if the normals nearly cancel (|sum k n| < 0.5 sum k, points pushing opposite
+  /// ways) the masses alone (unit: kg).
+  [[nodiscard]] double pairEffectiveMass(BodyId a, std::int64_t b, const contact::PatchSums& patch) const;
   contact::ContactParameters pairParameters(MaterialId a, MaterialId b, double lengthScale) const;
   /// Candidate pairs of this step: broad-phase body pairs (convex pieces flagged), then body-plane
   /// pairs of awake bodies reaching below a plane (WorldContacts.cpp).

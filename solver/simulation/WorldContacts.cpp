@@ -122,11 +122,11 @@ void World::updateBoxes() {
   }
 }
 
-double World::pairEffectiveMass(BodyId a, std::int64_t b, const Vec3& point, const Vec3& normal, double weight) const {
+double World::pairEffectiveMass(BodyId a, std::int64_t b, const contact::PatchSums& patch) const {
   double inverse = bodies_.inverseMass(a) + (b >= 0 ? bodies_.inverseMass(static_cast<BodyId>(b)) : 0.0);
-  if (weight > 0.0 && normal.norm() >= 0.5 * weight) {
-    const Vec3 n = normal.normalized();
-    const Vec3 c = point / weight;
+  if (patch.weight > 0.0 && patch.normal.norm() >= 0.5 * patch.weight) {
+    const Vec3 n = patch.normal.normalized();
+    const Vec3 c = patch.centre / patch.weight;
     const Vec3 ra = (c - bodies_.position(a)).cross(n);
     inverse += ra.dot(bodies_.inverseInertiaWorld(a) * ra);
     if (b >= 0) {
@@ -186,23 +186,18 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   if (records.empty()) {
     return;
   }
-  double pairStiffness = 0.0, pairForce = 0.0, pairEnergy = 0.0, weight = 0.0;
-  Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
+  contact::PatchSums patch;
   for (const auto& r : records) {
-    pairStiffness += r.stiffness;
+    patch.stiffness += r.stiffness;
     if (r.stiffness > 0.0 && r.depth > 0.0) {
-      pairForce += r.stiffness * r.depth;
-      pairEnergy += r.energy;
-      weight += r.stiffness;
-      centre += r.stiffness * r.point;
-      normal += r.stiffness * r.normal;
+      patch.addEngaged(r.stiffness, r.depth, r.energy, r.point, r.normal);
     }
   }
   // The damping ratio for how the contact stiffens with its overlap (a face, an edge, a corner),
   // and the effective mass at the contact, for an off-centre impact as for a central one.
-  params.dampingRatio = params.dampingByExponent.at(contact::contactExponent(pairForce, pairStiffness, pairEnergy));
-  const double effectiveMass = pairEffectiveMass(a, isStatic ? -1 : static_cast<std::int64_t>(b), centre, normal, weight);
-  const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
+  params.dampingRatio = params.dampingByExponent.at(patch.exponent());
+  const double effectiveMass = pairEffectiveMass(a, isStatic ? -1 : static_cast<std::int64_t>(b), patch);
+  const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness);
   const Vec3& xA = pa.position;
   const Vec3& xB = bodies_.position(b);
   pw.history.reserve(records.size());
@@ -345,7 +340,7 @@ void World::computeForces(double dt, double stateTime) {
     const Vec3& xA = bodies_.position(a);
     double lengthScale = bodyDn(a);
     contact::ContactParameters params;
-      if (plane) {
+    if (plane) {
       const bool isPlane = (pw.key.second & kPlaneBit) != 0;
       const StaticTarget target = staticTarget(planes_, convex_, isPlane, pw.key.second & ~kStaticBits, boxes_[a]);
       const contact::HalfSpaces solid{target.normals, target.offsets(), target.region};
@@ -354,30 +349,25 @@ void World::computeForces(double dt, double stateTime) {
     } else {
       const BodyId b = pw.key.second;
       lengthScale = std::min(lengthScale, bodyDn(b));
-        pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
+      pw.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b), 0.0,
                                                   engaged, lists[w], sampleListSlack(a, b));
       params = pairParameters(bodyMaterial_[a], bodyMaterial_[b], lengthScale);
     }
     if (engaged.empty()) {
       continue;
     }
-    double pairStiffness = 0.0, pairForce = 0.0, pairEnergy = 0.0;
-    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
+    contact::PatchSums patch;
     for (const auto& e : engaged) {
       const double k = contact::pointStiffness(params, e.area);
       const double d = std::max(e.depth, 0.0);
-      pairStiffness += k;
-      pairForce += k * d;
-      pairEnergy += 0.5 * k * d * d;
-      centre += k * e.point;
-      normal += k * e.normal;
+      patch.stiffness += k;
+      patch.addEngaged(k, d, 0.5 * k * d * d, e.point, e.normal);
     }
     // The damping ratio for how the contact stiffens with its overlap (a face, an edge, a corner),
     // and the effective mass at the contact, for an off-centre impact as for a central one.
-    params.dampingRatio = params.dampingByExponent.at(contact::contactExponent(pairForce, pairStiffness, pairEnergy));
-    const double effectiveMass =
-        pairEffectiveMass(a, plane ? -1 : static_cast<std::int64_t>(pw.key.second), centre, normal, pairStiffness);
-    const double beta = contact::dampingTime(params, effectiveMass, pairStiffness);
+    params.dampingRatio = params.dampingByExponent.at(patch.exponent());
+    const double effectiveMass = pairEffectiveMass(a, plane ? -1 : static_cast<std::int64_t>(pw.key.second), patch);
+    const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness);
     const BodyId b = plane ? a : pw.key.second;
     const Vec3& xB = bodies_.position(b);
     pw.history.reserve(engaged.size());
