@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/PackAnalysis.hpp"
 
+#include "analysis/UnderlayerSurface.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
@@ -45,43 +46,26 @@ double topOf(const simulation::World& world, simulation::BodyId b, const analysi
   return analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y();
 }
 
-/// The support bodies (every body that is not a unit: the rocks), where they sit and how high.
-struct Supports {
-  std::vector<Eigen::Vector3d> local; ///< centroids in the slope frame (s, t, n) (unit: m)
-  std::vector<double> top;            ///< highest points' n (unit: m)
-};
-
-Supports supportsOf(const io::Scene& scene, const simulation::BuiltScene& built, const std::vector<std::size_t>& units,
-                    const analysis::SlopeFrame& frame) {
+/// The support bodies (every body that is not a unit: the rocks): where they sit, how high, and
+/// which are surface stones (analysis/UnderlayerSurface).
+analysis::SurfaceStones supportsOf(const io::Scene& scene, const simulation::BuiltScene& built,
+                                   const std::vector<std::size_t>& units, const analysis::SlopeFrame& frame) {
   std::vector<bool> isUnit(scene.bodies.size(), false);
   for (std::size_t i : units) isUnit[i] = true;
-  Supports out;
+  const simulation::World& world = *built.world;
+  std::vector<analysis::PosedMesh> bodies;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (isUnit[i]) continue;
     const auto b = built.bodyIndexOfSceneBody[i];
-    out.local.push_back(frame.toLocal(built.world->bodies().position(b)));
-    out.top.push_back(topOf(*built.world, b, frame));
+    bodies.push_back({&world.shape(world.bodyShape(b)).mesh, world.bodyScale(b), world.bodies().position(b),
+                      world.bodies().orientation(b)});
   }
-  return out;
-}
-
-/// The mean top of the supports whose centroids project into the window; 0, the frame plane, if
-/// none does (unit: m).
-double meanTopIn(const Supports& supports, const analysis::SlopeWindow& window) {
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t j = 0; j < supports.top.size(); ++j) {
-    if (window.containsLocal(supports.local[j])) {
-      sum += supports.top[j];
-      ++count;
-    }
-  }
-  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return analysis::surfaceStones(bodies, frame);
 }
 
 /// The highest top of the supports whose centroids lie within `radius` of `local` in the slope
 /// plane; 0, the frame plane, if none does (unit: m).
-double highestTopNear(const Supports& supports, const Eigen::Vector3d& local, double radius) {
+double highestTopNear(const analysis::SurfaceStones& supports, const Eigen::Vector3d& local, double radius) {
   double top = 0.0;
   for (std::size_t j = 0; j < supports.top.size(); ++j) {
     if (std::hypot(supports.local[j].x() - local.x(), supports.local[j].y() - local.y()) < radius) {
@@ -231,7 +215,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
   }
   std::vector<double> tops;
   for (std::size_t i : units) tops.push_back(topOf(world, built.bodyIndexOfSceneBody[i], r.frame));
-  const Supports supports = supportsOf(scene, built, units, r.frame);
+  const analysis::SurfaceStones supports = supportsOf(scene, built, units, r.frame);
   if (r.frameFromSlope && r.packingHull.area > 0.0) {
     double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, t0 = s0, t1 = -s0;
     for (const auto& p : positions) {
@@ -244,7 +228,10 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     // The layer's base: the mean top of the support bodies (the rocks) in the window, as
     // armour place measures it (placement.txt), or the slope face where there are none.
     const analysis::SlopeWindow window{s0, s1 + 1e-9, t0, t1 + 1e-9};
-    r.underlayerTop = meanTopIn(supports, window);
+    r.underlayerTop = analysis::meanTopIn(supports, window);
+    r.underlayerTopAllStones = analysis::meanTopIn(supports, window, false);
+    r.surfaceStones = supports.exposedCount;
+    r.supportStones = supports.top.size();
     std::vector<double> aboveUnderlayer = tops;
     for (double& t : aboveUnderlayer) t -= r.underlayerTop;
     try {
@@ -306,9 +293,11 @@ std::string packText(const PackReport& r) {
     t += fmt::format("packing density     {:.4f} over the hull of the centroids ({:.1f} m^2)\n", r.packingHull.phi,
                      r.packingHull.area);
   if (r.thickness)
-    t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}) above the underlayer's mean top ({:.3f} m "
-                     "above the slope face), porosity {:.3f}\n",
-                     r.thickness->thickness, r.thickness->layerCoefficient, r.underlayerTop, r.porosity);
+    t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}) above the underlayer's top ({:.3f} m "
+                     "above the slope face: the mean top of its {} surface stones of {}; of every stone {:.3f} m), "
+                     "porosity {:.3f}\n",
+                     r.thickness->thickness, r.thickness->layerCoefficient, r.underlayerTop, r.surfaceStones,
+                     r.supportStones, r.underlayerTopAllStones, r.porosity);
   const double count = static_cast<double>(std::max<std::size_t>(r.units.size(), 1));
   t += fmt::format("underlayer          {} units touch it ({:.3f}); {} stacked ({:.3f}: no support touched, centroid "
                    "> 1 Dn above the underlayer)\n",
@@ -360,7 +349,9 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
                      json(r.packingHull.area));
     o << fmt::format("  \"layer_thickness_m\": {},\n  \"porosity\": {},\n", json(r.thickness ? r.thickness->thickness : NAN),
                      json(r.thickness ? r.porosity : NAN));
-    o << fmt::format("  \"underlayer_mean_top_m\": {},\n", json(r.underlayerTop));
+    o << fmt::format("  \"underlayer_mean_top_m\": {},\n  \"underlayer_mean_top_all_stones_m\": {},\n"
+                     "  \"underlayer_surface_stones\": {},\n",
+                     json(r.underlayerTop), json(r.underlayerTopAllStones), r.surfaceStones);
     o << fmt::format("  \"units_touching_underlayer\": {},\n  \"stacked_units\": {}", r.touchingUnderlayer,
                      r.stackedUnits);
     if (r.displacement) {

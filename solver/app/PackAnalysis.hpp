@@ -74,9 +74,13 @@ struct PackReport {
   analysis::PackingDensity packingHull;
   std::optional<analysis::LayerThickness> thickness;
   double porosity = 0.0;            ///< 1 - N V / (A t) over the hull (unit: -); 0 without a thickness
-  /// The layer's base for the thickness: the mean top of the support bodies (rocks) whose centroids
-  /// lie in the thickness window, slope-normal above the frame plane; 0 without any (unit: m).
+  /// The layer's base for the thickness: the mean top of the surface stones (support bodies whose
+  /// top no other support covers, analysis/UnderlayerSurface) whose centroids lie in the thickness
+  /// window, slope-normal above the frame plane; 0 without any (unit: m).
   double underlayerTop = 0.0;
+  double underlayerTopAllStones = 0.0; ///< the same over every support in the window, buried or not (unit: m)
+  std::size_t surfaceStones = 0;      ///< supports whose top is exposed (unit: -)
+  std::size_t supportStones = 0;      ///< supports (unit: -)
   std::size_t touchingUnderlayer = 0; ///< units that touch a support: rocks, the slope, the toe (unit: -)
   std::size_t stackedUnits = 0;       ///< units with UnitRow::stacked (unit: -)
   std::optional<analysis::PackDisplacement> displacement;

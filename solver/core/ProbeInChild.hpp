@@ -29,6 +29,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace armour::core {
 
@@ -44,6 +45,9 @@ struct ProbeMessage {
   std::string library = "netCDF/HDF5"; ///< the library that reads it, named when it crashes
   /// How to inspect the file; empty: the netCDF tools (`ncdump -h`, `h5dump -H`).
   std::string inspect;
+
+  ProbeMessage(std::string kind_, std::string fix_, std::string library_ = "netCDF/HDF5", std::string inspect_ = {})
+      : kind(std::move(kind_)), fix(std::move(fix_)), library(std::move(library_)), inspect(std::move(inspect_)) {}
 };
 
 /// Run `probe` (which should open `path` and read what the caller will read) in a forked child.

@@ -24,7 +24,8 @@ const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix",
                              "orientation", "crane", "settle", "settle_each", "nest", "lowering", "rocks", "clearance", "seed", "output"};
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
-const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries"};
+const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries", "select",
+                                        "off_underlayer_cost", "unkeyed_cost", "layer_thickness"};
 const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
 const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
 const KeyList kSettleEachKeys{"damping", "rest_speed", "rest_time", "max_time", "max_drift", "hold_at_max_drift"};
@@ -106,6 +107,15 @@ void readPlacement(const schema::Block& top, Scene& scene) {
   }
   os.maxAngleDeg = o.number("max_angle_deg", {"deg", Range{0.0, 180.0, false, false}, "20 (seed 000)"}, os.maxAngleDeg);
   os.tries = static_cast<int>(o.integer("tries", 1, "orientations tried per unit, the lowest kept", 1));
+  os.select = static_cast<placement::OrientationSelect>(o.choice("select", {"lowest", "keyed"}, 0));
+  os.offUnderlayerCost = o.number("off_underlayer_cost", {"Dn", kNonNegative, "1"}, os.offUnderlayerCost);
+  os.unkeyedCost = o.number("unkeyed_cost", {"Dn", kNonNegative, "0.25"}, os.unkeyedCost);
+  os.layerThickness = o.number("layer_thickness", {"Dn", kPositive, "1.52 (Core-Loc, CLI design table)"}, os.layerThickness);
+  if (os.select == placement::OrientationSelect::Lowest) {
+    o.refuse("layer_thickness", "it is the target of select: keyed; add select: keyed or remove it");
+    o.refuse("off_underlayer_cost", "it weighs the candidates of select: keyed; add select: keyed or remove it");
+    o.refuse("unkeyed_cost", "it weighs the candidates of select: keyed; add select: keyed or remove it");
+  }
   if (os.mode == placement::OrientationMode::Random) {
     o.refuse("euler_deg", "mode: random draws every orientation; remove euler_deg or use mode: perturbed");
     o.refuse("max_angle_deg", "mode: random draws every orientation; remove max_angle_deg or use mode: perturbed");

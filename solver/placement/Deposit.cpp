@@ -179,6 +179,21 @@ bool Deposit::touchesBodies(const Placed& u, double clearance) const {
   return false;
 }
 
+std::vector<std::size_t> Deposit::touching(const Placed& u, double clearance) const {
+  std::vector<std::size_t> out;
+  const int cx = col(u.x.x()), cy = row(u.x.y());
+  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + clearance) / cell_));
+  for (int j = std::max(0, cy - reach); j <= std::min(ny_ - 1, cy + reach); ++j) {
+    for (int i = std::max(0, cx - reach); i <= std::min(nx_ - 1, cx + reach); ++i) {
+      for (const std::size_t k : columns_[static_cast<std::size_t>(j * nx_ + i)]) {
+        if (touches(u, placed_[k], clearance)) out.push_back(k);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 bool Deposit::lower(Placed& u, double step, double clearance, double startZ) const {
   if (!clearWalls(u, clearance)) return false;
   const double floorZ = staticFloor(u, clearance);
@@ -239,8 +254,10 @@ bool Deposit::lower(Placed& u, double step, double clearance, double startZ) con
 void Deposit::add(const Placed& p) { insert(p); }
 
 bool Deposit::slideDown(Placed& u, int moves, double shift, double tilt, double step, double clearance,
-                        std::mt19937_64& rng, double maxDrift, double lift) const {
+                        std::mt19937_64& rng, double maxDrift, double lift,
+                        const std::function<double(const Placed&)>& cost, double costStep) const {
   const Eigen::Vector2d start = u.x.head<2>();
+  double current = cost ? cost(u) : 0.0;
   const auto unit = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   bool movedAny = false;
   for (int failed = 0; failed < moves;) {
@@ -251,8 +268,14 @@ bool Deposit::slideDown(Placed& u, int moves, double shift, double tilt, double 
     const Vec3 axis(rc * std::cos(phi), rc * std::sin(phi), zc);
     v.R = Eigen::AngleAxisd(tilt * unit(), axis).toRotationMatrix() * u.R;
     v.x += Vec3(shift * (2.0 * unit() - 1.0), shift * (2.0 * unit() - 1.0), 0.0);
-    if ((v.x.head<2>() - start).norm() <= maxDrift && lower(v, step, clearance, u.x.z() + lift) && v.x.z() < u.x.z() - 1e-3 * step) {
+    if ((v.x.head<2>() - start).norm() > maxDrift || !lower(v, step, clearance, u.x.z() + lift)) {
+      ++failed;
+      continue;
+    }
+    const double next = cost ? cost(v) : 0.0;
+    if (cost ? next < current - 1e-3 * costStep : v.x.z() < u.x.z() - 1e-3 * step) {
       u = v;
+      current = next;
       movedAny = true;
       failed = 0;
     } else {

@@ -17,6 +17,7 @@
 
 #include "simulation/World.hpp"
 
+#include <functional>
 #include <limits>
 #include <random>
 #include <vector>
@@ -78,14 +79,24 @@ public:
   /// where it started are refused. Each move is lowered from `lift` (m) above the current height
   /// (infinity: from above everything), and refused if it overlaps there: a finite lift is much
   /// cheaper when the unit sits low among tall neighbours. True if u moved.
+  /// With `cost`, a move is kept when it lowers cost(u) (by more than 1e-3 `costStep`) instead of
+  /// the centroid's height.
   bool slideDown(Placed& u, int moves, double shift, double tilt, double step, double clearance,
-                 std::mt19937_64& rng, double maxDrift = kAbove, double lift = kAbove) const;
+                 std::mt19937_64& rng, double maxDrift = kAbove, double lift = kAbove,
+                 const std::function<double(const Placed&)>& cost = {}, double costStep = 0.0) const;
 
   /// Keep u (after lower/slideDown) as an obstacle for the next ones.
   void add(const Placed& u);
 
   /// True when u, where it is, lies within `clearance` of a placed body (not the statics).
   [[nodiscard]] bool touchesBodies(const Placed& u, double clearance) const;
+  /// The placed bodies (their indices, in the order they were added) within `clearance` of u.
+  [[nodiscard]] std::vector<std::size_t> touching(const Placed& u, double clearance) const;
+  /// True when u, where it is, lies within `clearance` of an upward-facing static item (the
+  /// slope, the toe, the floor).
+  [[nodiscard]] bool touchesStatics(const Placed& u, double clearance) const {
+    return u.x.z() <= staticFloor(u, clearance);
+  }
 
   [[nodiscard]] std::size_t bodyCount() const { return placed_.size(); }
 

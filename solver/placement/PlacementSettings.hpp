@@ -50,6 +50,16 @@ struct GridSettings {
   double layerShiftY = 0.0;         ///< shift of each further layer along the trunk (unit: Dn)
 };
 
+/// How the best of an orientation's `tries` is chosen.
+enum class OrientationSelect {
+  Lowest, ///< the centroid that lands lowest (along the lowering direction)
+  /// The lowest top (the unit's highest point along the lowering direction: the layer's thickness)
+  /// among the candidates that touch the underlayer and key against a unit placed before, each
+  /// rule broken at a cost (offUnderlayerCost, unkeyedCost). Issue 24: a crane operator keys each
+  /// unit into the row below, on the underlayer, and keeps the layer thin.
+  Keyed,
+};
+
 struct OrientationSettings {
   OrientationMode mode = OrientationMode::Perturbed;
   /// The frame the base orientation and the perturbation are given in: false = the world (z up),
@@ -58,7 +68,18 @@ struct OrientationSettings {
   bool slopeFrame = false;
   double phiDeg = 0.0, thetaDeg = 0.0, psiDeg = 0.0; ///< base orientation, Tait-Bryan x-y'-z'' (unit: deg)
   double maxAngleDeg = 20.0;        ///< perturbation bound (unit: deg); seed 000: +-20 deg about the vertical
-  int tries = 1;                    ///< orientations tried per unit, the one that comes to rest lowest kept (unit: -)
+  int tries = 1;                    ///< orientations tried per unit, the best by `select` kept (unit: -)
+  OrientationSelect select = OrientationSelect::Lowest;
+  /// With `keyed`: the cost of a candidate that touches no underlayer stone (supports, the slope,
+  /// the toe), in Dn of extra height of its top (unit: Dn). Ours: a unit off the underlayer is as
+  /// bad as one standing this much higher.
+  double offUnderlayerCost = 1.0;
+  /// With `keyed`: the cost of a candidate that touches no unit placed before it (it does not key
+  /// into the row below or its neighbours), in Dn (unit: Dn). Ours.
+  double unkeyedCost = 0.25;
+  /// With `keyed`: the layer's design thickness k_t, from the underlayer's top to the units' tops
+  /// (unit: Dn); candidates are judged by how far their top lies from it. 0: the lowest top wins.
+  double layerThickness = 0.0;
 };
 
 struct CraneSettings {

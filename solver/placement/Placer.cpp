@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "placement/Placer.hpp"
 
+#include "analysis/UnderlayerSurface.hpp"
 #include "contact/SurfaceSamples.hpp"
 #include "core/Error.hpp"
 #include "core/Log.hpp"
@@ -243,6 +244,31 @@ LoneSettle settleAlone(World& world, BodyId b, const SettleEachSettings& s, doub
 /// Slope frame of the rock deposit: x up the face, z out of it (a rotation about y by -alpha).
 Quat slopeFrame(double tanAlpha) { return Quat(Eigen::AngleAxisd(-std::atan(tanAlpha), Vec3::UnitY())); }
 
+/// Where `select: keyed` measures a candidate's top: along the slope normal, from the underlayer's
+/// top (the mean top of its surface stones, or the face without stones).
+struct LayerBase {
+  Vec3 normal = Vec3::UnitZ(); ///< the slope's outward normal in the deposit frame (unit: -)
+  double offset = 0.0;         ///< normal . x of the underlayer's top, deposit frame (unit: m)
+};
+
+/// The cost of a lowered candidate under `select: keyed` (Dn): how far its highest point lies from
+/// the layer's design top (`layer_thickness` above the underlayer; without one, the height of the
+/// top itself: the lower the better), plus offUnderlayerCost when it touches no support (a body
+/// added before the units, or a static: the slope, the toe) and unkeyedCost when it touches no
+/// unit placed before it. Deposit indices are body ids: the deposit holds the World's bodies in
+/// order, supports first.
+double keyedCost(const Deposit& deposit, const Placed& u, std::size_t firstUnitBody, double clearance, double dn,
+                 const OrientationSettings& os, const LayerBase& base) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec3& v : u.shape->mesh.vertices) top = std::max(top, (u.x + u.R * (u.scale * v)).dot(base.normal));
+  top -= base.offset;
+  const double reach = 2.0 * clearance;
+  bool onSupport = deposit.touchesStatics(u, reach), onUnit = false;
+  for (std::size_t k : deposit.touching(u, reach)) (k < firstUnitBody ? onSupport : onUnit) = true;
+  const double height = os.layerThickness > 0.0 ? std::abs(top / dn - os.layerThickness) : top / dn;
+  return height + (onSupport ? 0.0 : os.offUnderlayerCost) + (onUnit ? 0.0 : os.unkeyedCost);
+}
+
 /// A Deposit over the statics of `built`, in the frame `toFrame` (world -> deposit frame).
 Deposit makeDeposit(const simulation::BuiltScene& built, const Quat& toFrame, double cell) {
   const auto& d = built.domain;
@@ -464,6 +490,20 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     core::failInput(scene.sourceName, "placement.lowering = slope_normal needs a slope; add one or use vertical");
   const Quat unitFrame = alongNormal ? slopeFrame(slope->tanAlpha) : Quat::Identity(); // deposit -> world
   const Quat toUnitFrame = unitFrame.conjugate();
+  // select: keyed measures tops from the underlayer's: the mean top of the rocks' surface stones.
+  LayerBase layerBase;
+  if (ps.orientation.select == OrientationSelect::Keyed) {
+    const Vec3 origin = slope != nullptr ? Vec3(slope->origin.x(), 0.0, slope->origin.y()) : Vec3::Zero();
+    const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope != nullptr ? slope->tanAlpha : 0.0, origin);
+    std::vector<analysis::PosedMesh> rocks;
+    for (BodyId b : rockBodies)
+      rocks.push_back({&world.shape(world.bodyShape(b)).mesh, world.bodyScale(b), world.bodies().position(b),
+                       world.bodies().orientation(b)});
+    const double inf = std::numeric_limits<double>::infinity();
+    const double top = analysis::meanTopIn(analysis::surfaceStones(rocks, frame), {-inf, inf, -inf, inf});
+    layerBase.normal = toUnitFrame * frame.normal;
+    layerBase.offset = frame.normal.dot(origin) + top;
+  }
   // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
   const Deposit staticDeposit =
       makeDeposit(result.built, toUnitFrame, 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
@@ -553,13 +593,29 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) {
     const GridPoint& g = grid[static_cast<std::size_t>(i)];
     std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
+    const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
+    const bool keyed = ps.orientation.select == OrientationSelect::Keyed;
+    // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
+    // natural frame too (world axes: the deposit is not rotated for the units).
+    // Keyed: the slide keeps the moves that lower the keyed cost, not the centroid.
+    const std::function<double(const Placed&)> cost =
+        keyed ? std::function<double(const Placed&)>(
+                    [&](const Placed& u) { return keyedCost(deposit, u, firstUnitBody, clearance, dn, ps.orientation, layerBase); })
+              : std::function<double(const Placed&)>();
+    const auto nestUnit = [&](Placed& u, Quat& natural) {
+      const Mat3 before = u.R;
+      deposit.slideDown(u, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
+                        ps.nest.maxDrift * dn, ps.nest.shift * dn, cost, step / dn);
+      natural = (unitFrame * Quat(Mat3(u.R * before.transpose())) * toUnitFrame * natural).normalized();
+    };
     Placed best;
     Quat bestNatural = Quat::Identity();
+    double bestCost = std::numeric_limits<double>::infinity();
     bool found = false;
     for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
       // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
       const Quat frame = ps.orientation.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
-      const Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
+      Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
       Placed u;
       u.shape = &unitModel;
       u.scale = unitScale;
@@ -568,21 +624,18 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       const auto [start, startZ] = descentStart(g);
       u.x = start;
       if (!deposit.lower(u, step, clearance, startZ)) continue;
-      if (!found || u.x.z() < best.x.z()) {
+      // Keyed: each candidate is nested before it is judged, as the operator judges a unit where
+      // it settles into the hole, not where it first touched.
+      if (keyed && ps.nest.enabled) nestUnit(u, natural);
+      const double c = keyed ? cost(u) : u.x.z();
+      if (!found || c < bestCost) {
         best = u;
         bestNatural = natural;
+        bestCost = c;
         found = true;
       }
     }
-    const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
-    if (found && ps.nest.enabled) {
-      // Work the unit into the hole below its grid point; the tilt of the slide turns its
-      // natural frame too (world axes: the deposit is not rotated for the units).
-      const Mat3 before = best.R;
-      deposit.slideDown(best, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
-                        ps.nest.maxDrift * dn, ps.nest.shift * dn);
-      bestNatural = (unitFrame * Quat(Mat3(best.R * before.transpose())) * toUnitFrame * bestNatural).normalized();
-    }
+    if (found && ps.nest.enabled && !keyed) nestUnit(best, bestNatural);
     if (!found)
       core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
                                         "(between the walls, or blocked where it starts); move the point or the walls",
@@ -735,8 +788,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   sm.dn = dn;
   sm.simulatedTime = world.time();
   if (slope != nullptr && gridSettings.file.empty()) {
-    const double a = std::atan(slope->tanAlpha);
-    const Vec3 along(std::cos(a), 0.0, std::sin(a)), normal(-std::sin(a), 0.0, std::cos(a));
     const Vec3 origin(slope->origin.x(), 0.0, slope->origin.y());
     double s0 = std::numeric_limits<double>::infinity(), s1 = -s0;
     for (const GridPoint& g : grid) {
@@ -749,31 +800,29 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     s0 -= 0.5 * spacing.dy;
     s1 += 0.5 * spacing.dy;
     sm.windowArea = (s1 - s0) * spacing.width;
-    const auto topAbove = [&](BodyId b) {
-      const auto& model = world.shape(world.bodyShape(b));
-      double top = -std::numeric_limits<double>::infinity();
-      for (const Vec3& v : model.mesh.vertices) top = std::max(top, (bodies.toWorld(b, world.bodyScale(b) * v) - origin).dot(normal));
-      return top;
+    // The layer's top: the units' mean top; its base: the mean top of the rocks' surface stones
+    // (analysis/UnderlayerSurface, as armour analyse measures it), both in the window.
+    const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope->tanAlpha, origin);
+    const analysis::SlopeWindow window{s0, s1, -std::numeric_limits<double>::infinity(),
+                                       std::numeric_limits<double>::infinity()};
+    const auto posed = [&](BodyId b) {
+      return analysis::PosedMesh{&world.shape(world.bodyShape(b)).mesh, world.bodyScale(b), bodies.position(b),
+                                 bodies.orientation(b)};
     };
-    const auto inWindow = [&](BodyId b) {
-      const double s = (bodies.position(b) - origin).dot(along);
-      return s >= s0 && s <= s1;
-    };
-    double unitTop = 0.0, rockTop = 0.0;
-    int nRock = 0;
-    for (const UnitRecord& u : result.units) {
-      if (!inWindow(u.body)) continue;
+    std::vector<analysis::PosedMesh> units, rocks;
+    for (const UnitRecord& u : result.units) units.push_back(posed(u.body));
+    for (BodyId b : rockBodies) rocks.push_back(posed(b));
+    const analysis::SurfaceStones unitTops = analysis::surfaceStones(units, frame);
+    double unitTop = 0.0;
+    for (std::size_t k = 0; k < units.size(); ++k) {
+      if (!window.containsLocal(unitTops.local[k])) continue;
       ++sm.windowUnits;
-      unitTop += topAbove(u.body);
+      unitTop += unitTops.top[k];
     }
-    for (BodyId b : rockBodies) {
-      if (!inWindow(b)) continue;
-      ++nRock;
-      rockTop += topAbove(b);
-    }
+    const double rockTop = analysis::meanTopIn(analysis::surfaceStones(rocks, frame), window);
     if (sm.windowUnits > 0 && sm.windowArea > 0.0) {
       sm.packingDensity = sm.windowUnits * dn * dn / sm.windowArea;
-      sm.layerThickness = unitTop / sm.windowUnits - (nRock > 0 ? rockTop / nRock : 0.0);
+      sm.layerThickness = unitTop / sm.windowUnits - rockTop;
       if (sm.layerThickness > 0.0)
         sm.porosity = 1.0 - sm.windowUnits * ps.volume / (sm.windowArea * sm.layerThickness);
     }

@@ -166,6 +166,14 @@ TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
   refuses(s + "  nest: {max_drift: -1}\n", "placement.nest.max_drift");
   refuses(s + "  nest: {moves: 0}\n", "placement.nest.moves");
   refuses(s + "  lowering: sideways\n", "expected one of vertical, slope_normal");
+  const auto orient = [&](const std::string& keys) {
+    return std::string(s).replace(s.find("mode: perturbed"), 15, "mode: perturbed, " + keys);
+  };
+  refuses(orient("select: best"), "expected one of lowest, keyed");
+  refuses(orient("layer_thickness: 1.5"), "add select: keyed");
+  refuses(orient("unkeyed_cost: 0.5"), "add select: keyed");
+  refuses(orient("select: keyed, layer_thickness: 0"), "placement.orientation.layer_thickness");
+  refuses(orient("select: keyed, off_underlayer_cost: -1"), "placement.orientation.off_underlayer_cost");
   refuses(s + "  settle_each: {damping: -1}\n", "placement.settle_each.damping");
   refuses(s + "  settle_each: {rest_speed: 0}\n", "placement.settle_each.rest_speed");
   refuses(s + "  settle_each: {max_time: 0}\n", "placement.settle_each.max_time");
@@ -523,4 +531,70 @@ TEST(Placement, ProgressRecordsAreRefusedWhenDamaged) {
   bad = text;
   bad.replace(bad.find("still_since "), 12, "still_since x");
   refused(bad, "is not a number");
+}
+
+TEST(Placement, KeyedAttitudesKeepUnitsOnTheFaceAndTheLayerAtItsDesignThickness) {
+  // Three staggered rows of 1 m^3 Core-Locs on a 4H:3V face (no rocks: the face is the
+  // underlayer) at seed 000's packing density 0.625 (rows 0.70 Dn apart while a unit is 1.65 Dn
+  // long), 8 random attitudes per unit, lowered along the face normal and nested; no simulation.
+  // Kept by the lowest centroid (`select: lowest`), units land on the rows below: 2 or more stand
+  // more than 0.3 Dn off the face. Kept by `select: keyed` with the Core-Loc's design thickness
+  // 1.52 Dn (the candidate whose top lies nearest 1.52 Dn above the face, touching the underlayer
+  // and a unit placed before), at most one does (a unit of the first row may rest on the toe
+  // instead), and the mean top lies within 0.15 Dn of 1.52 (1.61 seen; the lowest centroid gives
+  // 1.37 with units lying flat and stacked).
+  const std::string scene = R"(
+description: keyed placement test
+duration: 1
+seed: 7
+materials:
+  concrete: {density: 2400, friction: 0.6, restitution: 0.1}
+static:
+  - {type: slope, name: core, material: concrete, origin: [0, 0], cot: 1.3333333333333333, crest_height: 8,
+     toe_height: 1, toe_top_width: 2, toe_base_width: 4}
+  - {type: wall, name: south, material: concrete, axis: y, position: 0, side: min}
+  - {type: wall, name: north, material: concrete, axis: y, position: 5.6, side: max}
+placement:
+  shape: coreloc
+  material: concrete
+  volume: 1.0
+  method: grid
+  grid: {rows: 3, units_per_row: [3, 2], packing_density: 0.625, first_row: 0.5}
+  lowering: slope_normal
+  nest: {}
+)";
+  const double a = std::atan(0.75);
+  const Eigen::Vector3d normal(-std::sin(a), 0.0, std::cos(a));
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  struct Measure {
+    double meanTop = 0.0; ///< above the face (unit: m = Dn)
+    int offFace = 0;      ///< units whose lowest point is more than 0.3 Dn above the face
+  };
+  const auto measure = [&](const placement::PlacementResult& r) {
+    Measure m;
+    const auto& world = *r.built.world;
+    for (const auto& u : r.units) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const auto& v : world.shape(world.bodyShape(u.body)).mesh.vertices) {
+        const double n = world.bodies().toWorld(u.body, world.bodyScale(u.body) * v).dot(normal);
+        lo = std::min(lo, n);
+        hi = std::max(hi, n);
+      }
+      m.meanTop += hi / static_cast<double>(r.units.size());
+      if (lo > 0.3) ++m.offFace;
+    }
+    return m;
+  };
+  const auto lowest = placement::place(parse(scene + "  orientation: {mode: random, tries: 8}\n"), {}, options);
+  const auto keyed = placement::place(
+      parse(scene + "  orientation: {mode: random, tries: 8, select: keyed, layer_thickness: 1.52}\n"), {}, options);
+  ASSERT_EQ(keyed.units.size(), 8u);
+  const Measure l = measure(lowest), k = measure(keyed);
+  EXPECT_GE(l.offFace, 2) << "the test needs a grid where the lowest centroid leaves units off the face";
+  EXPECT_LE(k.offFace, 1);
+  EXPECT_NEAR(k.meanTop, 1.52, 0.15);
+  auto& world = *keyed.built.world;
+  world.evaluateContacts();
+  EXPECT_EQ(world.lastStep().contactPoints, 0u) << "no unit starts overlapping";
 }
