@@ -70,16 +70,35 @@ std::vector<BoundaryFace> boundaryFaces(const DeformableMesh& mesh) {
   return faces;
 }
 
+namespace {
+
+/// A face's consistent nodal forces under a uniform traction, added to `forces`.
+void addFaceLoad(const DeformableMesh& mesh, const BoundaryFace& face, const Vec3& traction, std::vector<Vec3>& forces) {
+  const Vec3 share = traction * (face.area / 3.0);
+  for (int i = 0; i < 3; ++i) {
+    forces[mesh.order == ElementOrder::Quadratic ? face.midEdges[i] : face.corners[i]] += share;
+  }
+}
+
+} // namespace
+
 std::vector<Vec3> tractionLoads(const DeformableMesh& mesh, const std::vector<BoundaryFace>& faces,
                                 const std::function<bool(const BoundaryFace&)>& select, const Vec3& traction) {
   std::vector<Vec3> forces(mesh.nodeCount(), Vec3::Zero());
   for (const auto& face : faces) {
-    if (!select(face)) {
-      continue;
+    if (select(face)) {
+      addFaceLoad(mesh, face, traction, forces);
     }
-    const Vec3 share = traction * (face.area / 3.0);
-    for (int i = 0; i < 3; ++i) {
-      forces[mesh.order == ElementOrder::Quadratic ? face.midEdges[i] : face.corners[i]] += share;
+  }
+  return forces;
+}
+
+std::vector<Vec3> pressureLoads(const DeformableMesh& mesh, const std::vector<BoundaryFace>& faces,
+                                const std::function<bool(const BoundaryFace&)>& select, double pressure) {
+  std::vector<Vec3> forces(mesh.nodeCount(), Vec3::Zero());
+  for (const auto& face : faces) {
+    if (select(face)) {
+      addFaceLoad(mesh, face, -pressure * face.normal, forces);
     }
   }
   return forces;

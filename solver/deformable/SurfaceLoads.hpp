@@ -31,4 +31,9 @@ struct BoundaryFace {
                                               const std::function<bool(const BoundaryFace&)>& select,
                                               const Vec3& traction);
 
+/// Nodal forces (unit: N) of a pressure p (unit: Pa, positive pushes into the body: t = -p n) on
+/// the selected boundary faces, with each face's own reference normal.
+[[nodiscard]] std::vector<Vec3> pressureLoads(const DeformableMesh& mesh, const std::vector<BoundaryFace>& faces,
+                                              const std::function<bool(const BoundaryFace&)>& select, double pressure);
+
 } // namespace armour::deformable
