@@ -5,6 +5,7 @@
 #include "core/Error.hpp"
 #include "deformable/DeformableBody.hpp"
 #include "deformable/StableStep.hpp"
+#include "deformable/StressFields.hpp"
 #include "deformable/TetElement.hpp"
 #include "support/DeformableFixtures.hpp"
 
@@ -176,6 +177,26 @@ TEST(DeformableElement, TooLargeAStepIsRefusedWithTheLimitNamed) {
   EXPECT_NE(message.find(fmt::format("use a step of at most {} s", limit.dt)), std::string::npos) << message;
   EXPECT_NE(inputErrorOf([&] { body.step(-1e-6); }).find("must be positive"), std::string::npos);
   EXPECT_NO_THROW(body.step(limit.dt));
+}
+
+} // namespace
+} // namespace armour::deformable
+
+namespace armour::deformable {
+namespace {
+
+TEST(DeformableStress, PrincipalDifferentialAndVonMisesOfAKnownTensor) {
+  // diag(3, -1, 2) MPa turned by 0.7 rad about (1, 2, 3): principal 3, 2, -1 MPa (tension
+  // positive, largest first), differential 4 MPa, von Mises sqrt((1 + 9 + 16) / 2) = sqrt(13)
+  // MPa; round-off of the eigen-solver, 1e-9 of 1 MPa.
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mat3 stress = R * Vec3(3e6, -1e6, 2e6).asDiagonal() * R.transpose();
+  const auto summary = summarizeStress(stress);
+  EXPECT_NEAR(summary.principal[0], 3e6, 1e-3);
+  EXPECT_NEAR(summary.principal[1], 2e6, 1e-3);
+  EXPECT_NEAR(summary.principal[2], -1e6, 1e-3);
+  EXPECT_NEAR(summary.differential, 4e6, 1e-3);
+  EXPECT_NEAR(summary.vonMises, std::sqrt(13.0) * 1e6, 1e-3);
 }
 
 } // namespace
