@@ -50,10 +50,18 @@ bool sameBits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
 }
 
+/// A file in this program's scratch folder, removed when the program ends.
 fs::path scratch(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("armour_deformable_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  struct Folder {
+    fs::path path = fs::temp_directory_path() / ("armour_deformable_" + std::to_string(::getpid()));
+    Folder() { fs::create_directories(path); }
+    ~Folder() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Folder folder;
+  return folder.path / name;
 }
 
 void run(DeformableBody& body, int steps) {

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Deformable-body benchmark (deformable/DeformableBody): element-steps per core-second of the
+// explicit step (internal forces of every element, the nodal gather, the update) for 4- and
+// 10-node tets, at the given thread counts. The body is a 1 x 1 x 4 m concrete bar of n x n x 4n
+// cells (6 tets each), base fixed, under gravity, with viscosity (5 % of critical) and F-bar, so
+// every term of the step runs.
+//
+//   bench_deformable [--cells 8] [--steps 200] [--threads 1,2]
+//
+// Every thread count runs the same steps; the final states must be bit-identical across thread
+// counts, or the case prints INVALID and the program exits with status 2. Figures go to
+// docs/benchmarks.md with the printed command, date and load.
+
+#include "core/BuildInfo.hpp"
+#include "deformable/DeformableBody.hpp"
+#include "deformable/StructuredBox.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using armour::deformable::DeformableBody;
+using armour::deformable::DeformableSettings;
+using armour::deformable::ElementOrder;
+using armour::deformable::Vec3;
+
+double wallNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// CPU time of the whole process, all threads (unit: s).
+double cpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+DeformableBody makeBar(ElementOrder order, int cells) {
+  DeformableSettings settings;
+  settings.material.viscosity = 0.05 * armour::deformable::criticalViscosity(settings.material, 1.0 / cells);
+  const auto tets = armour::deformable::structuredBox(Vec3(1.0, 1.0, 4.0), cells, cells, 4 * cells);
+  DeformableBody body(armour::deformable::makeDeformableMesh(tets, order, "bench bar"), settings, "bench bar");
+  for (std::size_t n = 0; n < body.nodeCount(); ++n) {
+    if (body.mesh().nodes[n].z() < 1e-9) {
+      body.fixNode(n);
+    }
+  }
+  return body;
+}
+
+struct Timing {
+  double wall = 0.0;
+  double cpu = 0.0;
+  std::vector<Vec3> positions;
+};
+
+Timing timeSteps(ElementOrder order, int cells, int steps, int threads) {
+  omp_set_num_threads(threads);
+  auto body = makeBar(order, cells);
+  const double dt = body.stableStep().dt;
+  body.step(dt); // first step computes the initial forces: not timed
+  Timing t;
+  const double wall0 = wallNow();
+  const double cpu0 = cpuNow();
+  for (int s = 0; s < steps; ++s) {
+    body.step(dt);
+  }
+  t.wall = wallNow() - wall0;
+  t.cpu = cpuNow() - cpu0;
+  t.positions = body.positions();
+  return t;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Deformable-body step benchmark (element-steps per core-second)"};
+  int cells = 8;
+  int steps = 200;
+  std::vector<int> threads = {1, 2};
+  app.add_option("--cells", cells, "cells across the 1 m bar (n x n x 4n cells, 6 tets each)")->check(CLI::Range(1, 64));
+  app.add_option("--steps", steps, "timed steps per case")->check(CLI::Range(1, 1000000));
+  app.add_option("--threads", threads, "thread counts")->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+
+  fmt::print("bench_deformable --cells {} --steps {} --threads {}\n", cells, steps, fmt::join(threads, ","));
+  fmt::print("build: {}\nload before: {}\n", armour::core::buildInfo(), loadAverage());
+  bool valid = true;
+  for (const auto order : {ElementOrder::Linear, ElementOrder::Quadratic}) {
+    const std::size_t elements = 6UL * cells * cells * 4 * cells;
+    std::vector<Vec3> reference;
+    for (const int n : threads) {
+      const auto t = timeSteps(order, cells, steps, n);
+      const double elementSteps = static_cast<double>(elements) * steps;
+      bool same = true;
+      if (reference.empty()) {
+        reference = t.positions;
+      } else {
+        same = std::memcmp(reference.data(), t.positions.data(), reference.size() * sizeof(Vec3)) == 0;
+        valid = valid && same;
+      }
+      fmt::print("tet{:<2} {:>7} elements {} threads: {:.3f} s wall, {:.3f} s cpu, {:.3g} element-steps per "
+                 "wall-second, {:.3g} per core-second (wall x threads), cpu/wall {:.2f}{}\n",
+                 static_cast<int>(order), elements, n, t.wall, t.cpu, elementSteps / t.wall,
+                 elementSteps / (t.wall * n), t.cpu / t.wall, same ? "" : "  INVALID: differs from 1 thread");
+    }
+  }
+  fmt::print("load after: {}\n", loadAverage());
+  return valid ? 0 : 2;
+}
