@@ -74,7 +74,8 @@ TEST(DeformableEnergy, ViscosityOnlyTakesEnergyOut) {
     rises += energy > previous * (1.0 + 1e-9) ? 1 : 0;
     previous = energy;
   }
-  std::cout << "viscous bar: energy " << energy0 << " J -> " << previous << " J, rises " << rises << "\n";
+  std::cout << "viscous bar: " << body.steps() << " steps, energy " << energy0 << " J -> " << previous << " J, rises "
+            << rises << "\n";
   EXPECT_LT(previous, 0.95 * energy0);
   EXPECT_EQ(rises, 0);
 }
