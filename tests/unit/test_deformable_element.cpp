@@ -6,6 +6,7 @@
 #include "deformable/DeformableBody.hpp"
 #include "deformable/StableStep.hpp"
 #include "deformable/StressFields.hpp"
+#include "deformable/SurfaceLoads.hpp"
 #include "deformable/TetElement.hpp"
 #include "support/DeformableFixtures.hpp"
 
@@ -197,6 +198,49 @@ TEST(DeformableStress, PrincipalDifferentialAndVonMisesOfAKnownTensor) {
   EXPECT_NEAR(summary.principal[2], -1e6, 1e-3);
   EXPECT_NEAR(summary.differential, 4e6, 1e-3);
   EXPECT_NEAR(summary.vonMises, std::sqrt(13.0) * 1e6, 1e-3);
+}
+
+} // namespace
+} // namespace armour::deformable
+
+namespace armour::deformable {
+namespace {
+
+TEST(DeformableSurface, BoundaryFacesAndTractionLoadsOfABox) {
+  // A 1 x 2 x 3 m box of 2 x 2 x 3 cells: its boundary is 2 (1*2 + 1*3 + 2*3) = 22 m^2 in 2 x 2
+  // triangles per cell face (2 (4 + 6 + 6) x 2 = 64 faces), with outward normals. A traction on
+  // the top face (z = 3) adds up to traction x 2 m^2, exactly (1e-12); on 10-node faces the
+  // corners take nothing and the mid-edge nodes A/3 each; pressure on the whole closed surface
+  // adds up to zero.
+  for (const auto order : {ElementOrder::Linear, ElementOrder::Quadratic}) {
+    const auto mesh = boxMesh(Vec3(1.0, 2.0, 3.0), 2, 2, 3, order);
+    const auto faces = boundaryFaces(mesh);
+    ASSERT_EQ(faces.size(), 64U);
+    double area = 0.0;
+    for (const auto& face : faces) {
+      area += face.area;
+      const Vec3 outward = face.centroid - Vec3(0.5, 1.0, 1.5);
+      EXPECT_GT(face.normal.dot(outward), 0.0);
+    }
+    EXPECT_NEAR(area, 22.0, 1e-12);
+    const Vec3 traction(1e5, -2e5, 3e5);
+    const auto onTop = [](const BoundaryFace& face) { return face.normal.z() > 0.5; };
+    const auto loads = tractionLoads(mesh, faces, onTop, traction);
+    Vec3 total = Vec3::Zero();
+    for (std::size_t n = 0; n < loads.size(); ++n) {
+      total += loads[n];
+      if (order == ElementOrder::Quadratic && n < mesh.cornerCount) {
+        EXPECT_EQ(loads[n].norm(), 0.0);
+      }
+    }
+    EXPECT_LT((total - 2.0 * traction).norm(), 1e-12 * traction.norm());
+    const auto pressure = pressureLoads(mesh, faces, [](const BoundaryFace&) { return true; }, 1e6);
+    Vec3 net = Vec3::Zero();
+    for (const auto& f : pressure) {
+      net += f;
+    }
+    EXPECT_LT(net.norm(), 1e-9 * 1e6);
+  }
 }
 
 } // namespace
