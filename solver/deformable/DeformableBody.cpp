@@ -148,13 +148,19 @@ void DeformableBody::computeAccelerations() {
   const int nen = mesh_.nodesPerElement();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t e = 0; e < elements; ++e) {
-    NodeMatrix x;
-    NodeMatrix v;
-    NodeMatrix f;
-    gatherElement(static_cast<std::size_t>(e), x, v);
-    const bool ok = deformable::internalForces(geometry_[static_cast<std::size_t>(e)], model_, x, v, f);
-    elementFailed_[static_cast<std::size_t>(e)] = ok ? 0 : 1;
-    std::copy(f.data(), f.data() + 3 * nen, elementForces_.data() + static_cast<std::size_t>(e) * nen * 3);
+    const auto element = static_cast<std::size_t>(e);
+    double x[30];
+    double v[30];
+    for (int a = 0; a < nen; ++a) {
+      const auto n = static_cast<std::size_t>(mesh_.element(element)[a]);
+      for (int k = 0; k < 3; ++k) {
+        x[3 * a + k] = state_.positions[n][k];
+        v[3 * a + k] = state_.velocities[n][k];
+      }
+    }
+    const bool ok = deformable::internalForces(geometry_[element], model_, x, v, nen,
+                                               elementForces_.data() + element * static_cast<std::size_t>(nen) * 3);
+    elementFailed_[element] = ok ? 0 : 1;
   }
   for (std::size_t e = 0; e < mesh_.elementCount(); ++e) {
     if (elementFailed_[e] != 0) {

@@ -96,28 +96,39 @@ bool elementGeometry(ElementOrder order, const NodeMatrix& X, ElementGeometry& o
   return toPhysical(Vec3::Constant(0.25), out.centroidGradient, detJ);
 }
 
-bool internalForces(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x, const NodeMatrix& v,
-                    NodeMatrix& force) {
-  force.setZero(x.rows(), 3);
+namespace {
+
+/// The force kernel with the node count fixed at compile time (4 or 10), so Eigen unrolls the
+/// small products; x, v and force are row-major N x 3 arrays.
+template <int N>
+bool internalForcesFixed(const ElementGeometry& g, const ElementModel& model, const double* xData,
+                         const double* vData, double* forceData) {
+  using Rows = Eigen::Matrix<double, N, 3, Eigen::RowMajor>;
+  const Eigen::Map<const Rows> x(xData);
+  const Eigen::Map<const Rows> v(vData);
+  Eigen::Map<Rows> force(forceData);
+  force.setZero();
+  const auto gradient = [&](const NodeMatrix& m) { return Eigen::Map<const Rows>(m.data()); };
   const bool useFBar = model.fBar && g.points > 1;
-  NodeMatrix g0;
+  Rows g0;
   double J0 = 0.0;
   if (useFBar) {
-    const Mat3 F0 = deformationGradient(x, g.centroidGradient);
+    const Mat3 F0 = x.transpose() * gradient(g.centroidGradient);
     J0 = F0.determinant();
     if (!(J0 > 0.0)) {
       return false;
     }
-    g0 = g.centroidGradient * F0.inverse();
+    g0.noalias() = gradient(g.centroidGradient) * F0.inverse();
   }
   for (int q = 0; q < g.points; ++q) {
-    const Mat3 F = deformationGradient(x, g.gradient[q]);
+    const auto G = gradient(g.gradient[q]);
+    const Mat3 F = x.transpose() * G;
     const double J = F.determinant();
     if (!(J > 0.0)) {
       return false;
     }
     const Mat3 Finv = F.inverse();
-    const NodeMatrix gq = g.gradient[q] * Finv; // spatial gradients dN/dx
+    const Rows gq = G * Finv; // spatial gradients dN/dx
     if (useFBar) {
       const Mat3 tau = kirchhoffStress(std::cbrt(J0 / J) * F, model.lame);
       force.noalias() += g.weight[q] * (gq * tau + (tau.trace() / 3.0) * (g0 - gq));
@@ -125,11 +136,24 @@ bool internalForces(const ElementGeometry& g, const ElementModel& model, const N
       force.noalias() += g.weight[q] * (gq * kirchhoffStress(F, model.lame));
     }
     if (model.viscosity != 0.0) {
-      const Mat3 L = deformationGradient(v, g.gradient[q]) * Finv;
+      const Mat3 L = (v.transpose() * G) * Finv;
       force.noalias() += (g.weight[q] * J * model.viscosity) * (gq * (L + L.transpose()));
     }
   }
   return true;
+}
+
+} // namespace
+
+bool internalForces(const ElementGeometry& g, const ElementModel& model, const double* x, const double* v,
+                    int nodes, double* force) {
+  return nodes == 4 ? internalForcesFixed<4>(g, model, x, v, force) : internalForcesFixed<10>(g, model, x, v, force);
+}
+
+bool internalForces(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x, const NodeMatrix& v,
+                    NodeMatrix& force) {
+  force.resize(x.rows(), 3);
+  return internalForces(g, model, x.data(), v.data(), static_cast<int>(x.rows()), force.data());
 }
 
 double elementStrainEnergy(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x) {

@@ -75,6 +75,10 @@ struct ElementModel {
 /// not meaningful.
 bool internalForces(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x, const NodeMatrix& v,
                     NodeMatrix& force);
+/// The same on raw row-major arrays of `nodes` (4 or 10) x 3 values: the form the body's step
+/// uses, writing straight into its per-element force array.
+bool internalForces(const ElementGeometry& g, const ElementModel& model, const double* x, const double* v, int nodes,
+                    double* force);
 
 /// Stored energy sum_q W_q psi(F_bar_q) (unit: J); NaN for an inverted element.
 [[nodiscard]] double elementStrainEnergy(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x);
