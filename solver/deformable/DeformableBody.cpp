@@ -3,12 +3,15 @@
 
 #include "core/Error.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <utility>
 
 namespace armour::deformable {
 namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 /// Share of the element mass per node: 4-node tets equal shares; 10-node HRZ (DeformableBody.hpp).
 double massShare(ElementOrder order, int localNode) {
@@ -146,6 +149,7 @@ void DeformableBody::gatherElement(std::size_t e, NodeMatrix& x, NodeMatrix& v) 
 void DeformableBody::computeAccelerations() {
   const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
   const int nen = mesh_.nodesPerElement();
+  const double start = now();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t e = 0; e < elements; ++e) {
     const auto element = static_cast<std::size_t>(e);
@@ -162,6 +166,8 @@ void DeformableBody::computeAccelerations() {
                                                elementForces_.data() + element * static_cast<std::size_t>(nen) * 3);
     elementFailed_[element] = ok ? 0 : 1;
   }
+  const double forcesDone = now();
+  times_.elementForces += forcesDone - start;
   for (std::size_t e = 0; e < mesh_.elementCount(); ++e) {
     if (elementFailed_[e] != 0) {
       throw DeformableStepError(fmt::format(
@@ -189,6 +195,7 @@ void DeformableBody::computeAccelerations() {
     state_.accelerations[node] = a;
   }
   state_.accelerationsReady = true;
+  times_.gather += now() - forcesDone;
 }
 
 void DeformableBody::checkStep(double dt) const {
@@ -212,13 +219,16 @@ void DeformableBody::step(double dt) {
     computeAccelerations();
   }
   const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
+  double start = now();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t n = 0; n < nodes; ++n) {
     auto& v = state_.velocities[static_cast<std::size_t>(n)];
     v += 0.5 * dt * state_.accelerations[static_cast<std::size_t>(n)];
     state_.positions[static_cast<std::size_t>(n)] += dt * v;
   }
+  times_.update += now() - start;
   computeAccelerations();
+  start = now();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t n = 0; n < nodes; ++n) {
     state_.velocities[static_cast<std::size_t>(n)] += 0.5 * dt * state_.accelerations[static_cast<std::size_t>(n)];
@@ -231,6 +241,7 @@ void DeformableBody::step(double dt) {
                                             source_, n, state_.time, state_.steps));
     }
   }
+  times_.update += now() - start;
 }
 
 std::vector<Vec3> DeformableBody::internalForces() {

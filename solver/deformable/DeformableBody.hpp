@@ -56,6 +56,13 @@ struct DeformableState {
   std::vector<Vec3> accelerations; ///< at `positions` (unit: m/s^2)
 };
 
+/// Wall time spent in each stage of the step since the body was made (unit: s).
+struct DeformableStepTimes {
+  double elementForces = 0.0; ///< internal forces of every element (parallel over elements)
+  double gather = 0.0;        ///< nodal sums, loads and accelerations (parallel over nodes)
+  double update = 0.0;        ///< kicks, drift and the non-finite guard
+};
+
 /// A step that cannot go on (inverted element, non-finite state): names the element or node and
 /// the time.
 class DeformableStepError : public std::runtime_error {
@@ -98,6 +105,8 @@ public:
   /// non-finite state.
   void step(double dt);
 
+  [[nodiscard]] const DeformableStepTimes& stepTimes() const { return times_; }
+
   /// Internal nodal forces at the current state (unit: N); computed if not ready.
   [[nodiscard]] std::vector<Vec3> internalForces();
   [[nodiscard]] double kineticEnergy() const;       ///< 1/2 sum m v^2 (unit: J)
@@ -127,6 +136,7 @@ private:
   std::vector<Vec3> prescribedVelocity_;
   std::vector<Vec3> externalForces_;
   DeformableState state_;
+  DeformableStepTimes times_;
   std::vector<double> elementForces_;       ///< element e, local node a, axis k at (e * nen + a) * 3 + k (unit: N)
   std::vector<std::uint8_t> elementFailed_; ///< per element: 1 if inverted in the last force pass
   std::vector<std::int64_t> nodeSlotStart_; ///< CSR: node n's rows in elementForces_ are nodeSlots_[start[n]..start[n+1])

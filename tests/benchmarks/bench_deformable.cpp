@@ -68,6 +68,7 @@ DeformableBody makeBar(ElementOrder order, int cells) {
 struct Timing {
   double wall = 0.0;
   double cpu = 0.0;
+  armour::deformable::DeformableStepTimes stages;
   std::vector<Vec3> positions;
 };
 
@@ -76,6 +77,7 @@ Timing timeSteps(ElementOrder order, int cells, int steps, int threads) {
   auto body = makeBar(order, cells);
   const double dt = body.stableStep().dt;
   body.step(dt); // first step computes the initial forces: not timed
+  const auto before = body.stepTimes();
   Timing t;
   const double wall0 = wallNow();
   const double cpu0 = cpuNow();
@@ -85,6 +87,9 @@ Timing timeSteps(ElementOrder order, int cells, int steps, int threads) {
   t.wall = wallNow() - wall0;
   t.cpu = cpuNow() - cpu0;
   t.positions = body.positions();
+  t.stages.elementForces = body.stepTimes().elementForces - before.elementForces;
+  t.stages.gather = body.stepTimes().gather - before.gather;
+  t.stages.update = body.stepTimes().update - before.update;
   return t;
 }
 
@@ -120,6 +125,9 @@ int main(int argc, char** argv) {
                  "wall-second, {:.3g} per core-second (wall x threads), cpu/wall {:.2f}{}\n",
                  static_cast<int>(order), elements, n, t.wall, t.cpu, elementSteps / t.wall,
                  elementSteps / (t.wall * n), t.cpu / t.wall, same ? "" : "  INVALID: differs from 1 thread");
+      fmt::print("        stages: element forces {:.1f} %, gather {:.1f} %, update {:.1f} %\n",
+                 100.0 * t.stages.elementForces / t.wall, 100.0 * t.stages.gather / t.wall,
+                 100.0 * t.stages.update / t.wall);
     }
   }
   fmt::print("load after: {}\n", loadAverage());
