@@ -211,6 +211,14 @@ void DeformableBody::checkStep(double dt) const {
                                                : std::string(),
                     stable_.dt);
   }
+  // The mass damping is explicit (it acts on the half-step velocity): alpha dt <= 1 keeps it from
+  // overshooting (it is unstable from alpha dt = 2).
+  if (settings_.massDamping * dt > 1.0) {
+    core::failInput(source_ + ": mass_damping",
+                    "{} 1/s with a step of {} s: mass_damping x dt = {} must be at most 1; use a step of at most {} s "
+                    "or less damping (critical damping of the slowest mode is 2 omega_1)",
+                    settings_.massDamping, dt, settings_.massDamping * dt, 1.0 / settings_.massDamping);
+  }
 }
 
 void DeformableBody::step(double dt) {

@@ -101,8 +101,8 @@ public:
   /// The stable step of this mesh and material (StableStep.hpp) with settings().stepSafety.
   [[nodiscard]] const StableStepEstimate& stableStep() const { return stable_; }
   /// Advance by dt. Throws core::InputError when dt is not positive or above stableStep().dt (the
-  /// limit, l_min, c_d and the element named), DeformableStepError on an inverted element or a
-  /// non-finite state.
+  /// limit, l_min, c_d and the element named) or when massDamping x dt > 1, DeformableStepError
+  /// on an inverted element or a non-finite state.
   void step(double dt);
 
   [[nodiscard]] const DeformableStepTimes& stepTimes() const { return times_; }

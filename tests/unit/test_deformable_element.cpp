@@ -178,6 +178,14 @@ TEST(DeformableElement, TooLargeAStepIsRefusedWithTheLimitNamed) {
   EXPECT_NE(message.find(fmt::format("use a step of at most {} s", limit.dt)), std::string::npos) << message;
   EXPECT_NE(inputErrorOf([&] { body.step(-1e-6); }).find("must be positive"), std::string::npos);
   EXPECT_NO_THROW(body.step(limit.dt));
+  // Mass damping is explicit: alpha dt above 1 is refused with the largest allowed step named.
+  DeformableSettings damped;
+  damped.massDamping = 2.0 / limit.dt;
+  DeformableBody heavy(boxMesh(Vec3(1, 1, 1), 2, 2, 2, ElementOrder::Quadratic), damped, "cube");
+  const std::string dampingMessage = inputErrorOf([&] { heavy.step(limit.dt); });
+  EXPECT_NE(dampingMessage.find("cube: mass_damping"), std::string::npos) << dampingMessage;
+  EXPECT_NE(dampingMessage.find(fmt::format("use a step of at most {} s", 0.5 * limit.dt)), std::string::npos)
+      << dampingMessage;
 }
 
 } // namespace
