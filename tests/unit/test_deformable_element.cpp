@@ -6,6 +6,7 @@
 #include "deformable/DeformableBody.hpp"
 #include "deformable/StableStep.hpp"
 #include "deformable/StressFields.hpp"
+#include "deformable/StressHistory.hpp"
 #include "deformable/SurfaceLoads.hpp"
 #include "deformable/TetElement.hpp"
 #include "support/DeformableFixtures.hpp"
@@ -13,7 +14,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <unistd.h>
 
 namespace armour::deformable {
 namespace {
@@ -249,6 +253,53 @@ TEST(DeformableSurface, BoundaryFacesAndTractionLoadsOfABox) {
     }
     EXPECT_LT(net.norm(), 1e-9 * 1e6);
   }
+}
+
+} // namespace
+} // namespace armour::deformable
+
+namespace armour::deformable {
+namespace {
+
+TEST(DeformableStress, HistoryFindsTheLargestTensionWhereAndWhenItOccurs) {
+  // A 1 x 1 x 4 m bar stretched along z with a strain growing linearly up the bar,
+  // eps_zz = s z / H (u_z = s z^2 / (2 H)): the largest tension must be found in the top layer of
+  // cells (centroid z > 3.5 m). Recorded at s = 1e-3, 2e-3, 1e-3 (positions set, no steps): twice
+  // the strain gives about twice the stress, and the record's extreme is the second sample's.
+  DeformableSettings settings;
+  settings.gravity = Vec3::Zero();
+  DeformableBody body(boxMesh(Vec3(1.0, 1.0, 4.0), 2, 2, 8, ElementOrder::Quadratic), settings, "bar");
+  StressHistory history;
+  const auto stretch = [&](double s) {
+    std::vector<Vec3> x(body.nodeCount());
+    for (std::size_t n = 0; n < x.size(); ++n) {
+      const Vec3& X = body.mesh().nodes[n];
+      x[n] = X + Vec3(0.0, 0.0, s * X.z() * X.z() / (2.0 * 4.0));
+    }
+    body.setPositions(x);
+  };
+  for (const double s : {1e-3, 2e-3, 1e-3}) {
+    stretch(s);
+    history.record(body);
+  }
+  ASSERT_EQ(history.samples().size(), 3U);
+  const auto& first = history.samples()[0];
+  EXPECT_GT(first.tension.location.z(), 3.5);
+  EXPECT_GT(first.tension.value, 0.0);
+  // Twice the strain, about twice the stress (1 % for the Neo-Hookean's nonlinearity at 2e-3).
+  EXPECT_NEAR(history.samples()[1].tension.value / first.tension.value, 2.0, 0.02);
+  EXPECT_EQ(history.extremes().tension.value, history.samples()[1].tension.value);
+  EXPECT_GE(history.extremes().differential.value, history.samples()[2].differential.value);
+  const auto file = std::filesystem::temp_directory_path() / ("armour_stress_history_" + std::to_string(::getpid()) + ".csv");
+  history.writeCsv(file);
+  std::ifstream in(file);
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) {
+    ++lines;
+  }
+  std::filesystem::remove(file);
+  EXPECT_EQ(lines, 4);
 }
 
 } // namespace
