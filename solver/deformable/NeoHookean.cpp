@@ -55,10 +55,24 @@ double criticalViscosity(const MaterialSettings& m, double elementSize) {
   return 2.0 * elementSize * std::sqrt(m.youngModulus * m.density);
 }
 
+namespace {
+
+/// ln J from H = F - I without cancellation: J - 1 = I1 + I2 + I3 (the invariants of H), then
+/// log1p. At rest and under rigid translation J - 1 is then 0 to round-off of H, not of 1.
+double logJacobian(const Mat3& H) {
+  const double i1 = H.trace();
+  const double i2 = 0.5 * (i1 * i1 - (H * H).trace());
+  return std::log1p(i1 + i2 + H.determinant());
+}
+
+} // namespace
+
 Mat3 kirchhoffStress(const Mat3& F, const LameConstants& lame) {
-  const double J = F.determinant();
-  Mat3 tau = lame.mu * (F * F.transpose() - Mat3::Identity());
-  tau.diagonal().array() += lame.lambda * std::log(J);
+  // B - I = H + H^T + H H^T with H = F - I: small strains keep their digits (F F^T - I would lose
+  // them to the 1 on the diagonal).
+  const Mat3 H = F - Mat3::Identity();
+  Mat3 tau = lame.mu * (H + H.transpose() + H * H.transpose());
+  tau.diagonal().array() += lame.lambda * logJacobian(H);
   return tau;
 }
 
@@ -73,8 +87,11 @@ Mat3 cauchyStress(const Mat3& F, const Mat3& Fdot, const LameConstants& lame, do
 }
 
 double strainEnergyDensity(const Mat3& F, const LameConstants& lame) {
-  const double lnJ = std::log(F.determinant());
-  return 0.5 * lame.mu * (F.squaredNorm() - 3.0) - lame.mu * lnJ + 0.5 * lame.lambda * lnJ * lnJ;
+  // psi = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2 with tr C - 3 = 2 tr H + |H|^2, so that
+  // the first-order terms mu (tr H - ln J) cancel in exact arithmetic, not after rounding 3.
+  const Mat3 H = F - Mat3::Identity();
+  const double lnJ = logJacobian(H);
+  return lame.mu * ((H.trace() - lnJ) + 0.5 * H.squaredNorm()) + 0.5 * lame.lambda * lnJ * lnJ;
 }
 
 } // namespace armour::deformable

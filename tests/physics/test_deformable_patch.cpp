@@ -129,7 +129,8 @@ TEST(DeformablePatch, GmshMeshOfAVcrossPassesInQuadraticForm) {
   }
   std::cout << "vcross: " << body.mesh().elementCount() << " tet10, " << body.nodeCount()
             << " nodes, stable step " << body.stableStep().dt << " s, worst stress error / |T| " << worst << "\n";
-  // Small strains (1e-3) lose three digits to cancellation in B - I and ln J.
+  // Small strains (1e-3) lose three digits: F - I is formed from x^T G, positions of about 1 m
+  // against displacements of 1 mm (measured 2.3e-12).
   EXPECT_LT(worst, 1e-9);
 }
 
