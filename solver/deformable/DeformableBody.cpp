@@ -2,6 +2,7 @@
 #include "deformable/DeformableBody.hpp"
 
 #include "core/Error.hpp"
+#include "deformable/SurfaceLoads.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -30,6 +31,18 @@ void validateSettings(const DeformableSettings& s, const std::string& source) {
   if (s.massDamping < 0.0) {
     core::failInput(source + ": mass_damping", "{} 1/s: must be 0 or positive; a negative damping adds energy",
                     s.massDamping);
+  }
+  core::requireFinite(s.contactGradient, source + ": contact_gradient", "Pa/m");
+  if (s.contactGradient < 0.0) {
+    core::failInput(source + ": contact_gradient", "{} Pa/m: must be positive, or 0 for 10 E / h", s.contactGradient);
+  }
+  for (std::size_t i = 0; i < s.halfSpaces.size(); ++i) {
+    const double length = s.halfSpaces[i].normal.norm();
+    if (!s.halfSpaces[i].point.allFinite() || !(std::abs(length - 1.0) < 1e-9)) {
+      core::failInput(fmt::format("{}: half_spaces[{}]", source, i),
+                      "normal of length {}, point ({}, {}, {}): the normal must be a unit vector and the point finite",
+                      length, s.halfSpaces[i].point.x(), s.halfSpaces[i].point.y(), s.halfSpaces[i].point.z());
+    }
   }
   if (!(s.stepSafety > 0.0 && s.stepSafety <= 1.0)) {
     core::failInput(source + ": step_safety", "{}: the safety factor on the stable step must be in (0, 1]",
@@ -68,7 +81,22 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       core::failInput(source_, "node {} belongs to no element; remove unused nodes from the mesh", n);
     }
   }
-  stable_ = deformable::stableStep(mesh_, settings_.material, settings_.stepSafety);
+  double omegaContact = 0.0;
+  if (!settings_.halfSpaces.empty()) {
+    surface_ = surfaceTriangles(mesh_, boundaryFaces(mesh_));
+    contactGradient_ = settings_.contactGradient;
+    if (contactGradient_ == 0.0) {
+      double edges = 0.0;
+      for (const auto& t : surface_) {
+        for (int i = 0; i < 3; ++i) {
+          edges += (mesh_.nodes[t[(i + 1) % 3]] - mesh_.nodes[t[i]]).norm();
+        }
+      }
+      contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
+    }
+    omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
+  }
+  stable_ = deformable::stableStep(mesh_, settings_.material, settings_.stepSafety, omegaContact);
   fixedAxes_.assign(nodes, 0U);
   prescribedVelocity_.assign(nodes, Vec3::Zero());
   externalForces_.assign(nodes, Vec3::Zero());
@@ -176,12 +204,23 @@ void DeformableBody::computeAccelerations() {
           source_, e, state_.time, state_.steps));
     }
   }
+  if (!surface_.empty()) {
+    // Serial over surface triangles, in order: the nodal sums do not depend on the threads.
+    contactForces_.assign(nodeCount(), Vec3::Zero());
+    for (const auto& halfSpace : settings_.halfSpaces) {
+      addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, contactForces_);
+    }
+  }
   const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
   const double alpha = settings_.massDamping;
+  const bool contact = !surface_.empty();
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t n = 0; n < nodes; ++n) {
     const auto node = static_cast<std::size_t>(n);
     Vec3 force = externalForces_[node] + masses_[node] * settings_.gravity;
+    if (contact) {
+      force += contactForces_[node];
+    }
     for (auto s = nodeSlotStart_[node]; s < nodeSlotStart_[node + 1]; ++s) {
       const double* f = elementForces_.data() + nodeSlots_[static_cast<std::size_t>(s)] * 3;
       force -= Vec3(f[0], f[1], f[2]);
@@ -205,8 +244,12 @@ void DeformableBody::checkStep(double dt) const {
   if (dt > stable_.dt) {
     core::failInput(source_,
                     "time step {} s is above the stable limit {} s = safety {} x l_min {} m (element {}) / c_d {} m/s"
-                    "{}; use a step of at most {} s",
+                    "{}{}; use a step of at most {} s",
                     dt, stable_.dt, stable_.safety, stable_.lengthMin, stable_.element, stable_.waveSpeed,
+                    stable_.contactFrequency > 0.0
+                        ? fmt::format(", lowered by the contact (omega_c = {} rad/s, G = {} Pa/m)",
+                                      stable_.contactFrequency, contactGradient_)
+                        : std::string(),
                     stable_.dampingRatio > 0.0 ? fmt::format(" x (sqrt(1 + xi^2) - xi), xi = {}", stable_.dampingRatio)
                                                : std::string(),
                     stable_.dt);
@@ -297,6 +340,27 @@ double DeformableBody::gravityPotential() const {
     sum -= masses_[n] * settings_.gravity.dot(state_.positions[n]);
   }
   return sum;
+}
+
+double DeformableBody::contactEnergy() const {
+  double energy = 0.0;
+  std::vector<Vec3> scratch(surface_.empty() ? 0 : nodeCount(), Vec3::Zero());
+  for (const auto& halfSpace : settings_.halfSpaces) {
+    energy += addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, scratch);
+  }
+  return energy;
+}
+
+Vec3 DeformableBody::contactForce() const {
+  std::vector<Vec3> forces(surface_.empty() ? 0 : nodeCount(), Vec3::Zero());
+  for (const auto& halfSpace : settings_.halfSpaces) {
+    addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, forces);
+  }
+  Vec3 total = Vec3::Zero();
+  for (const auto& f : forces) {
+    total += f;
+  }
+  return total;
 }
 
 std::vector<Mat3> DeformableBody::elementStresses() const {

@@ -22,6 +22,7 @@
 /// Not thread-safe itself: call from one thread.
 
 #include "deformable/DeformableMesh.hpp"
+#include "deformable/HalfSpaceContact.hpp"
 #include "deformable/NeoHookean.hpp"
 #include "deformable/StableStep.hpp"
 #include "deformable/TetElement.hpp"
@@ -44,6 +45,13 @@ struct DeformableSettings {
   /// element bound for every shape measured (StableStep.hpp); the 10 % covers elements shortened
   /// by compression during the run (concrete strains stay below 1e-3).
   double stepSafety = 0.9;
+  /// Static half-spaces the body may touch (a rigid anvil, a floor): frictionless potential
+  /// contact (HalfSpaceContact.hpp). Empty: no contact.
+  std::vector<HalfSpace> halfSpaces;
+  /// Potential gradient G of the half-spaces (unit: Pa/m): contact pressure G x depth. 0 = 10 E / h
+  /// with h the mean edge of the surface triangles: a contact layer ten times stiffer than a
+  /// surface element, so a pressure sigma sinks in by sigma h / (10 E).
+  double contactGradient = 0.0;
 };
 
 /// The dynamic state, all that a restart needs besides the mesh, settings and boundary conditions.
@@ -112,6 +120,11 @@ public:
   [[nodiscard]] double kineticEnergy() const;       ///< 1/2 sum m v^2 (unit: J)
   [[nodiscard]] double strainEnergy() const;        ///< sum of element stored energies (unit: J)
   [[nodiscard]] double gravityPotential() const;    ///< -sum m g . x (unit: J)
+  /// Energy of the half-space contacts at the current positions (unit: J).
+  [[nodiscard]] double contactEnergy() const;
+  /// Total contact force on the body from the half-spaces at the current positions (unit: N).
+  [[nodiscard]] Vec3 contactForce() const;
+  [[nodiscard]] double contactGradient() const { return contactGradient_; } ///< G in use (unit: Pa/m)
   /// Mean Cauchy stress of each element (unit: Pa), tension positive.
   [[nodiscard]] std::vector<Mat3> elementStresses() const;
 
@@ -141,6 +154,9 @@ private:
   std::vector<std::uint8_t> elementFailed_; ///< per element: 1 if inverted in the last force pass
   std::vector<std::int64_t> nodeSlotStart_; ///< CSR: node n's rows in elementForces_ are nodeSlots_[start[n]..start[n+1])
   std::vector<std::int64_t> nodeSlots_;
+  std::vector<SurfaceTriangle> surface_;    ///< for contact: the surface as flat triangles
+  double contactGradient_ = 0.0;            ///< G (unit: Pa/m)
+  std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
 };
 
 } // namespace armour::deformable

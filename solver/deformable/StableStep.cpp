@@ -21,7 +21,8 @@ double elementLength(const DeformableMesh& mesh, std::size_t e) {
   return altitude / (mesh.order == ElementOrder::Quadratic ? kQuadraticLengthDivisor : kLinearLengthDivisor);
 }
 
-StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material, double safety) {
+StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material, double safety,
+                              double contactFrequency) {
   StableStepEstimate out;
   out.safety = safety;
   out.lengthMin = std::numeric_limits<double>::infinity();
@@ -35,7 +36,10 @@ StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings
   out.waveSpeed = dilatationalWaveSpeed(material);
   out.dampingRatio = 2.0 * material.viscosity / (material.density * out.waveSpeed * out.lengthMin);
   const double xi = out.dampingRatio;
-  out.dt = safety * (out.lengthMin / out.waveSpeed) * (std::sqrt(1.0 + xi * xi) - xi);
+  out.contactFrequency = contactFrequency;
+  const double omegaElement = 2.0 * out.waveSpeed / out.lengthMin;
+  const double omega = std::sqrt(omegaElement * omegaElement + contactFrequency * contactFrequency);
+  out.dt = safety * (2.0 / omega) * (std::sqrt(1.0 + xi * xi) - xi);
   return out;
 }
 

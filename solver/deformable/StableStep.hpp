@@ -33,13 +33,17 @@ struct StableStepEstimate {
   double waveSpeed = 0.0;     ///< c_d (unit: m/s)
   double dampingRatio = 0.0;  ///< xi of the highest mode (unit: -)
   double safety = 0.0;        ///< the safety factor used (unit: -)
+  double contactFrequency = 0.0; ///< omega_c of fully pressed half-space contact (unit: rad/s); 0 = none
 };
 
 /// Element length l_e (unit: m) of element e.
 [[nodiscard]] double elementLength(const DeformableMesh& mesh, std::size_t e);
 
-/// @pre the mesh has elements; material validated; 0 < safety <= 1.
+/// @pre the mesh has elements; material validated; 0 < safety <= 1; contactFrequency >= 0.
+/// With contact, the element bound 2 c_d / l_min and omega_c combine as
+/// omega = sqrt((2 c_d / l_min)^2 + omega_c^2) (a surface node's frequency with its contact spring
+/// is at most that), and dt = safety (2 / omega) (sqrt(1 + xi^2) - xi).
 [[nodiscard]] StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material,
-                                            double safety);
+                                            double safety, double contactFrequency = 0.0);
 
 } // namespace armour::deformable
