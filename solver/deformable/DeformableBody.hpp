@@ -3,10 +3,11 @@
 /// @file DeformableBody.hpp
 /// One deformable unit on its own: a tet mesh of compressible Neo-Hookean material advanced by
 /// explicit central differences with lumped mass (seed 002 eq. 1-4, 7-10), under gravity, nodal
-/// forces and fixed or velocity-driven nodes. No contact yet (issue 26, later sessions).
+/// forces, fixed or velocity-driven nodes, and frictionless contact with static half-spaces
+/// (HalfSpaceContact.hpp). Contact with other bodies: issue 26, later sessions.
 ///
 /// Step (velocity form of central differences, "kick-drift-kick"):
-///   v += dt/2 a;  x += dt v;  a = (f_ext + m g - f_int(x, v)) / m - alpha v;  v += dt/2 a,
+///   v += dt/2 a;  x += dt v;  a = (f_ext + m g + f_c(x) - f_int(x, v)) / m - alpha v;  v += dt/2 a,
 /// with the viscous forces taken at the half-step velocity. Prescribed components keep their
 /// velocity and take no acceleration.
 ///
