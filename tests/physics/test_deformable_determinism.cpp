@@ -32,10 +32,12 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A 0.5 x 0.5 x 2 m bar, base fixed, one top corner driven sideways at 0.5 m/s, a 1 MN load on
-/// another top node, gravity, viscosity 5 % of critical: every term of the step is exercised.
+/// another top node, gravity, viscosity 5 % of critical, and a wall (static half-space x > 0.5 m
+/// - 10 um) pressing on its side: every term of the step is exercised.
 DeformableBody loadedBar(ElementOrder order = ElementOrder::Quadratic) {
   DeformableSettings settings;
   settings.material.viscosity = 0.05 * criticalViscosity(settings.material, 0.25);
+  settings.halfSpaces = {HalfSpace{Vec3(0.5 - 1e-5, 0.0, 0.0), -Vec3::UnitX()}};
   DeformableBody body(test::boxMesh(Vec3(0.5, 0.5, 2.0), 2, 2, 8, order), settings, "bar");
   for (const auto n : test::nodesWhere(body.mesh(), [](const Vec3& p) { return p.z() < 1e-9; })) {
     body.fixNode(n);
@@ -83,6 +85,7 @@ TEST(DeformableDeterminism, OneAndTwoThreadsGiveTheSameBits) {
   // The test is not void: the body moved and deformed. (80 steps: on a loaded 2-core machine each
   // of the step's parallel regions may wait for a time slice, so more steps cost seconds.)
   EXPECT_GT((one.positions()[one.nodeCount() - 1] - one.mesh().nodes[one.nodeCount() - 1]).norm(), 1e-5);
+  EXPECT_GT(one.contactForce().norm(), 0.0);
   EXPECT_TRUE(sameBits(one.positions(), two.positions()));
   EXPECT_TRUE(sameBits(one.velocities(), two.velocities()));
   EXPECT_EQ(one.strainEnergy(), two.strainEnergy());
