@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "deformable/DeformableBody.hpp"
+
+#include "core/Error.hpp"
+#include "deformable/SurfaceLoads.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+namespace armour::deformable {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+/// Share of the element mass per node: 4-node tets equal shares; 10-node HRZ (DeformableBody.hpp).
+double massShare(ElementOrder order, int localNode) {
+  if (order == ElementOrder::Linear) {
+    return 0.25;
+  }
+  return localNode < 4 ? 1.0 / 36.0 : 4.0 / 27.0;
+}
+
+void validateSettings(const DeformableSettings& s, const std::string& source) {
+  validateMaterial(s.material, source + ": material");
+  for (int k = 0; k < 3; ++k) {
+    core::requireFinite(s.gravity[k], source + ": gravity", "m/s^2");
+  }
+  core::requireFinite(s.massDamping, source + ": mass_damping", "1/s");
+  if (s.massDamping < 0.0) {
+    core::failInput(source + ": mass_damping", "{} 1/s: must be 0 or positive; a negative damping adds energy",
+                    s.massDamping);
+  }
+  core::requireFinite(s.contactGradient, source + ": contact_gradient", "Pa/m");
+  if (s.contactGradient < 0.0) {
+    core::failInput(source + ": contact_gradient", "{} Pa/m: must be positive, or 0 for 10 E / h", s.contactGradient);
+  }
+  for (std::size_t i = 0; i < s.halfSpaces.size(); ++i) {
+    const double length = s.halfSpaces[i].normal.norm();
+    if (!s.halfSpaces[i].point.allFinite() || !(std::abs(length - 1.0) < 1e-9)) {
+      core::failInput(fmt::format("{}: half_spaces[{}]", source, i),
+                      "normal of length {}, point ({}, {}, {}): the normal must be a unit vector and the point finite",
+                      length, s.halfSpaces[i].point.x(), s.halfSpaces[i].point.y(), s.halfSpaces[i].point.z());
+    }
+  }
+  if (!(s.stepSafety > 0.0 && s.stepSafety <= 1.0)) {
+    core::failInput(source + ": step_safety", "{}: the safety factor on the stable step must be in (0, 1]",
+                    s.stepSafety);
+  }
+}
+
+} // namespace
+
+DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& settings, std::string source)
+    : mesh_(std::move(mesh)), settings_(settings), source_(std::move(source)) {
+  validateSettings(settings_, source_);
+  if (mesh_.elementCount() == 0) {
+    core::failInput(source_, "the mesh has no elements; give a tetrahedral mesh of the unit");
+  }
+  model_ = {lameConstants(settings_.material), settings_.material.viscosity, settings_.fBar};
+  const int nen = mesh_.nodesPerElement();
+  const std::size_t nodes = mesh_.nodeCount();
+  geometry_.resize(mesh_.elementCount());
+  masses_.assign(nodes, 0.0);
+  for (std::size_t e = 0; e < mesh_.elementCount(); ++e) {
+    NodeMatrix X(nen, 3);
+    for (int a = 0; a < nen; ++a) {
+      X.row(a) = mesh_.nodes[mesh_.element(e)[a]].transpose();
+    }
+    if (!elementGeometry(mesh_.order, X, geometry_[e])) {
+      core::failInput(source_, "element {} (nodes {}, {}, {}, {}) is inverted or flat; remesh the unit", e,
+                      mesh_.element(e)[0], mesh_.element(e)[1], mesh_.element(e)[2], mesh_.element(e)[3]);
+    }
+    for (int a = 0; a < nen; ++a) {
+      masses_[mesh_.element(e)[a]] += massShare(mesh_.order, a) * settings_.material.density * geometry_[e].volume;
+    }
+  }
+  for (std::size_t n = 0; n < nodes; ++n) {
+    if (!(masses_[n] > 0.0)) {
+      core::failInput(source_, "node {} belongs to no element; remove unused nodes from the mesh", n);
+    }
+  }
+  double omegaContact = 0.0;
+  if (!settings_.halfSpaces.empty()) {
+    surface_ = surfaceTriangles(mesh_, boundaryFaces(mesh_));
+    contactGradient_ = settings_.contactGradient;
+    if (contactGradient_ == 0.0) {
+      double edges = 0.0;
+      for (const auto& t : surface_) {
+        for (int i = 0; i < 3; ++i) {
+          edges += (mesh_.nodes[t[(i + 1) % 3]] - mesh_.nodes[t[i]]).norm();
+        }
+      }
+      contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
+    }
+    omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
+  }
+  stable_ = deformable::stableStep(mesh_, settings_.material, settings_.stepSafety, omegaContact);
+  fixedAxes_.assign(nodes, 0U);
+  prescribedVelocity_.assign(nodes, Vec3::Zero());
+  externalForces_.assign(nodes, Vec3::Zero());
+  state_.positions = mesh_.nodes;
+  state_.velocities.assign(nodes, Vec3::Zero());
+  state_.accelerations.assign(nodes, Vec3::Zero());
+  elementForces_.assign(mesh_.connectivity.size() * 3, 0.0);
+  elementFailed_.assign(mesh_.elementCount(), 0);
+  buildNodeElementTable();
+}
+
+void DeformableBody::buildNodeElementTable() {
+  const std::size_t nodes = mesh_.nodeCount();
+  nodeSlotStart_.assign(nodes + 1, 0);
+  for (const auto n : mesh_.connectivity) {
+    ++nodeSlotStart_[static_cast<std::size_t>(n) + 1];
+  }
+  for (std::size_t n = 0; n < nodes; ++n) {
+    nodeSlotStart_[n + 1] += nodeSlotStart_[n];
+  }
+  nodeSlots_.resize(mesh_.connectivity.size());
+  std::vector<std::int64_t> fill(nodeSlotStart_.begin(), nodeSlotStart_.end() - 1);
+  // Slots in increasing order (element, then local node): the fixed order of every nodal sum.
+  for (std::size_t slot = 0; slot < mesh_.connectivity.size(); ++slot) {
+    nodeSlots_[static_cast<std::size_t>(fill[mesh_.connectivity[slot]]++)] = static_cast<std::int64_t>(slot);
+  }
+}
+
+void DeformableBody::setPositions(const std::vector<Vec3>& positions) {
+  if (positions.size() != nodeCount()) {
+    core::failInput(source_, "{} positions given for {} nodes", positions.size(), nodeCount());
+  }
+  state_.positions = positions;
+  state_.accelerationsReady = false;
+}
+
+void DeformableBody::setVelocities(const std::vector<Vec3>& velocities) {
+  if (velocities.size() != nodeCount()) {
+    core::failInput(source_, "{} velocities given for {} nodes", velocities.size(), nodeCount());
+  }
+  state_.velocities = velocities;
+  state_.accelerationsReady = false;
+}
+
+void DeformableBody::fixNode(std::size_t node, const Vec3& velocity, unsigned axes) {
+  if (node >= nodeCount()) {
+    core::failInput(source_, "fixed node {} does not exist ({} nodes)", node, nodeCount());
+  }
+  fixedAxes_[node] |= axes & 7U;
+  for (int k = 0; k < 3; ++k) {
+    if ((axes >> k) & 1U) {
+      prescribedVelocity_[node][k] = velocity[k];
+      state_.velocities[node][k] = velocity[k];
+    }
+  }
+  state_.accelerationsReady = false;
+}
+
+void DeformableBody::setExternalForce(std::size_t node, const Vec3& force) {
+  if (node >= nodeCount()) {
+    core::failInput(source_, "loaded node {} does not exist ({} nodes)", node, nodeCount());
+  }
+  externalForces_[node] = force;
+  state_.accelerationsReady = false;
+}
+
+void DeformableBody::gatherElement(std::size_t e, NodeMatrix& x, NodeMatrix& v) const {
+  const int nen = mesh_.nodesPerElement();
+  x.resize(nen, 3);
+  v.resize(nen, 3);
+  for (int a = 0; a < nen; ++a) {
+    const auto n = static_cast<std::size_t>(mesh_.element(e)[a]);
+    x.row(a) = state_.positions[n].transpose();
+    v.row(a) = state_.velocities[n].transpose();
+  }
+}
+
+void DeformableBody::computeAccelerations() {
+  const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
+  const int nen = mesh_.nodesPerElement();
+  const double start = now();
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t e = 0; e < elements; ++e) {
+    const auto element = static_cast<std::size_t>(e);
+    double x[30];
+    double v[30];
+    for (int a = 0; a < nen; ++a) {
+      const auto n = static_cast<std::size_t>(mesh_.element(element)[a]);
+      for (int k = 0; k < 3; ++k) {
+        x[3 * a + k] = state_.positions[n][k];
+        v[3 * a + k] = state_.velocities[n][k];
+      }
+    }
+    const bool ok = deformable::internalForces(geometry_[element], model_, x, v, nen,
+                                               elementForces_.data() + element * static_cast<std::size_t>(nen) * 3);
+    elementFailed_[element] = ok ? 0 : 1;
+  }
+  const double forcesDone = now();
+  times_.elementForces += forcesDone - start;
+  for (std::size_t e = 0; e < mesh_.elementCount(); ++e) {
+    if (elementFailed_[e] != 0) {
+      throw DeformableStepError(fmt::format(
+          "{}: element {} is inverted (J <= 0) at t = {} s, step {}: the step is too large for the loading, or the "
+          "load crushes the element; reduce the step or refine the mesh",
+          source_, e, state_.time, state_.steps));
+    }
+  }
+  if (!surface_.empty()) {
+    // Serial over surface triangles, in order: the nodal sums do not depend on the threads.
+    contactForces_.assign(nodeCount(), Vec3::Zero());
+    for (const auto& halfSpace : settings_.halfSpaces) {
+      addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, contactForces_);
+    }
+  }
+  const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
+  const double alpha = settings_.massDamping;
+  const bool contact = !surface_.empty();
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t n = 0; n < nodes; ++n) {
+    const auto node = static_cast<std::size_t>(n);
+    Vec3 force = externalForces_[node] + masses_[node] * settings_.gravity;
+    if (contact) {
+      force += contactForces_[node];
+    }
+    for (auto s = nodeSlotStart_[node]; s < nodeSlotStart_[node + 1]; ++s) {
+      const double* f = elementForces_.data() + nodeSlots_[static_cast<std::size_t>(s)] * 3;
+      force -= Vec3(f[0], f[1], f[2]);
+    }
+    Vec3 a = force / masses_[node] - alpha * state_.velocities[node];
+    for (int k = 0; k < 3; ++k) {
+      if ((fixedAxes_[node] >> k) & 1U) {
+        a[k] = 0.0;
+      }
+    }
+    state_.accelerations[node] = a;
+  }
+  state_.accelerationsReady = true;
+  times_.gather += now() - forcesDone;
+}
+
+void DeformableBody::checkStep(double dt) const {
+  if (!(dt > 0.0)) {
+    core::failInput(source_, "time step {} s: must be positive", dt);
+  }
+  if (dt > stable_.dt) {
+    core::failInput(source_,
+                    "time step {} s is above the stable limit {} s = safety {} x l_min {} m (element {}) / c_d {} m/s"
+                    "{}{}; use a step of at most {} s",
+                    dt, stable_.dt, stable_.safety, stable_.lengthMin, stable_.element, stable_.waveSpeed,
+                    stable_.contactFrequency > 0.0
+                        ? fmt::format(", lowered by the contact (omega_c = {} rad/s, G = {} Pa/m)",
+                                      stable_.contactFrequency, contactGradient_)
+                        : std::string(),
+                    stable_.dampingRatio > 0.0 ? fmt::format(" x (sqrt(1 + xi^2) - xi), xi = {}", stable_.dampingRatio)
+                                               : std::string(),
+                    stable_.dt);
+  }
+  // The mass damping is explicit (it acts on the half-step velocity): alpha dt <= 1 keeps it from
+  // overshooting (it is unstable from alpha dt = 2).
+  if (settings_.massDamping * dt > 1.0) {
+    core::failInput(source_ + ": mass_damping",
+                    "{} 1/s with a step of {} s: mass_damping x dt = {} must be at most 1; use a step of at most {} s "
+                    "or less damping (critical damping of the slowest mode is 2 omega_1)",
+                    settings_.massDamping, dt, settings_.massDamping * dt, 1.0 / settings_.massDamping);
+  }
+}
+
+void DeformableBody::step(double dt) {
+  checkStep(dt);
+  if (!state_.accelerationsReady) {
+    computeAccelerations();
+  }
+  const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
+  double start = now();
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t n = 0; n < nodes; ++n) {
+    auto& v = state_.velocities[static_cast<std::size_t>(n)];
+    v += 0.5 * dt * state_.accelerations[static_cast<std::size_t>(n)];
+    state_.positions[static_cast<std::size_t>(n)] += dt * v;
+  }
+  times_.update += now() - start;
+  computeAccelerations();
+  start = now();
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t n = 0; n < nodes; ++n) {
+    state_.velocities[static_cast<std::size_t>(n)] += 0.5 * dt * state_.accelerations[static_cast<std::size_t>(n)];
+  }
+  state_.time += dt;
+  ++state_.steps;
+  for (std::size_t n = 0; n < nodeCount(); ++n) {
+    if (!state_.positions[n].allFinite() || !state_.velocities[n].allFinite()) {
+      throw DeformableStepError(fmt::format("{}: node {} has a non-finite position or velocity at t = {} s, step {}",
+                                            source_, n, state_.time, state_.steps));
+    }
+  }
+  times_.update += now() - start;
+}
+
+std::vector<Vec3> DeformableBody::internalForces() {
+  if (!state_.accelerationsReady) {
+    computeAccelerations();
+  }
+  std::vector<Vec3> out(nodeCount(), Vec3::Zero());
+  for (std::size_t n = 0; n < nodeCount(); ++n) {
+    for (auto s = nodeSlotStart_[n]; s < nodeSlotStart_[n + 1]; ++s) {
+      const double* f = elementForces_.data() + nodeSlots_[static_cast<std::size_t>(s)] * 3;
+      out[n] += Vec3(f[0], f[1], f[2]);
+    }
+  }
+  return out;
+}
+
+double DeformableBody::kineticEnergy() const {
+  double sum = 0.0;
+  for (std::size_t n = 0; n < nodeCount(); ++n) {
+    sum += 0.5 * masses_[n] * state_.velocities[n].squaredNorm();
+  }
+  return sum;
+}
+
+double DeformableBody::strainEnergy() const {
+  std::vector<double> energy(mesh_.elementCount());
+  const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t e = 0; e < elements; ++e) {
+    NodeMatrix x;
+    NodeMatrix v;
+    gatherElement(static_cast<std::size_t>(e), x, v);
+    energy[static_cast<std::size_t>(e)] = elementStrainEnergy(geometry_[static_cast<std::size_t>(e)], model_, x);
+  }
+  double sum = 0.0;
+  for (const double w : energy) {
+    sum += w;
+  }
+  return sum;
+}
+
+double DeformableBody::gravityPotential() const {
+  double sum = 0.0;
+  for (std::size_t n = 0; n < nodeCount(); ++n) {
+    sum -= masses_[n] * settings_.gravity.dot(state_.positions[n]);
+  }
+  return sum;
+}
+
+double DeformableBody::contactEnergy() const {
+  double energy = 0.0;
+  std::vector<Vec3> scratch(surface_.empty() ? 0 : nodeCount(), Vec3::Zero());
+  for (const auto& halfSpace : settings_.halfSpaces) {
+    energy += addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, scratch);
+  }
+  return energy;
+}
+
+Vec3 DeformableBody::contactForce() const {
+  std::vector<Vec3> forces(surface_.empty() ? 0 : nodeCount(), Vec3::Zero());
+  for (const auto& halfSpace : settings_.halfSpaces) {
+    addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, forces);
+  }
+  Vec3 total = Vec3::Zero();
+  for (const auto& f : forces) {
+    total += f;
+  }
+  return total;
+}
+
+std::vector<Mat3> DeformableBody::elementStresses() const {
+  std::vector<Mat3> out(mesh_.elementCount());
+  const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t e = 0; e < elements; ++e) {
+    NodeMatrix x;
+    NodeMatrix v;
+    gatherElement(static_cast<std::size_t>(e), x, v);
+    out[static_cast<std::size_t>(e)] = elementCauchyStress(geometry_[static_cast<std::size_t>(e)], model_, x, v);
+  }
+  return out;
+}
+
+void DeformableBody::restore(const DeformableState& state, const std::string& source) {
+  const std::size_t n = nodeCount();
+  if (state.positions.size() != n || state.velocities.size() != n || state.accelerations.size() != n) {
+    core::failInput(source, "the state holds {} nodes, this body has {}: the checkpoint is of another mesh; restart "
+                            "with the mesh it was written for",
+                    state.positions.size(), n);
+  }
+  state_ = state;
+}
+
+} // namespace armour::deformable

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file DeformableBody.hpp
+/// One deformable unit on its own: a tet mesh of compressible Neo-Hookean material advanced by
+/// explicit central differences with lumped mass (seed 002 eq. 1-4, 7-10), under gravity, nodal
+/// forces, fixed or velocity-driven nodes, and frictionless contact with static half-spaces
+/// (HalfSpaceContact.hpp). Contact with other bodies: issue 26, later sessions.
+///
+/// Step (velocity form of central differences, "kick-drift-kick"):
+///   v += dt/2 a;  x += dt v;  a = (f_ext + m g + f_c(x) - f_int(x, v)) / m - alpha v;  v += dt/2 a,
+/// with the viscous forces taken at the half-step velocity. Prescribed components keep their
+/// velocity and take no acceleration.
+///
+/// Lumped mass: 4-node tets give rho V / 4 to each node. 10-node tets use the HRZ lumping
+/// (Hinton, Rock & Zienkiewicz 1976): the diagonal of the consistent mass, scaled to the element
+/// mass: rho V / 36 per corner and 4 rho V / 27 per mid-edge node (for straight edges). Row sums
+/// of the consistent matrix would give corners a negative mass (-rho V / 20).
+///
+/// Threads: elements are computed in parallel (OpenMP), each into its own rows of a per-element
+/// force array; each node then sums its elements' rows in a fixed order (element index, then
+/// local node). No floating-point sum depends on the thread count: 1 and N threads give the same
+/// bits.
+/// Not thread-safe itself: call from one thread.
+
+#include "deformable/DeformableMesh.hpp"
+#include "deformable/HalfSpaceContact.hpp"
+#include "deformable/NeoHookean.hpp"
+#include "deformable/StableStep.hpp"
+#include "deformable/TetElement.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace armour::deformable {
+
+struct DeformableSettings {
+  MaterialSettings material;
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81); ///< (unit: m/s^2), z up as everywhere in armour
+  bool fBar = true;                     ///< F-bar on 10-node elements (seed 002 eq. 10); off only to show locking
+  /// Mass-proportional damping alpha (unit: 1/s): a force -alpha m v on every node. 0 for
+  /// dynamics; to find a static state (damping to rest) about 2 omega_1 of the slowest mode.
+  double massDamping = 0.0;
+  /// Safety factor on the stable step (unit: -). 0.9: the length estimate is at or below the
+  /// element bound for every shape measured (StableStep.hpp); the 10 % covers elements shortened
+  /// by compression during the run (concrete strains stay below 1e-3).
+  double stepSafety = 0.9;
+  /// Static half-spaces the body may touch (a rigid anvil, a floor): frictionless potential
+  /// contact (HalfSpaceContact.hpp). Empty: no contact.
+  std::vector<HalfSpace> halfSpaces;
+  /// Potential gradient G of the half-spaces (unit: Pa/m): contact pressure G x depth. 0 = 10 E / h
+  /// with h the mean edge of the surface triangles: a contact layer ten times stiffer than a
+  /// surface element, so a pressure sigma sinks in by sigma h / (10 E).
+  double contactGradient = 0.0;
+};
+
+/// The dynamic state, all that a restart needs besides the mesh, settings and boundary conditions.
+struct DeformableState {
+  double time = 0.0;              ///< (unit: s)
+  std::uint64_t steps = 0;
+  bool accelerationsReady = false;
+  std::vector<Vec3> positions;     ///< (unit: m)
+  std::vector<Vec3> velocities;    ///< (unit: m/s)
+  std::vector<Vec3> accelerations; ///< at `positions` (unit: m/s^2)
+};
+
+/// Wall time spent in each stage of the step since the body was made (unit: s).
+struct DeformableStepTimes {
+  double elementForces = 0.0; ///< internal forces of every element (parallel over elements)
+  double gather = 0.0;        ///< nodal sums, loads and accelerations (parallel over nodes)
+  double update = 0.0;        ///< kicks, drift and the non-finite guard
+};
+
+/// A step that cannot go on (inverted element, non-finite state): names the element or node and
+/// the time.
+class DeformableStepError : public std::runtime_error {
+public:
+  explicit DeformableStepError(const std::string& message) : std::runtime_error(message) {}
+};
+
+class DeformableBody {
+public:
+  /// Throws core::InputError naming `source` for a bad material or settings value, an empty mesh,
+  /// an element that is inverted or flat, or a node that belongs to no element.
+  DeformableBody(DeformableMesh mesh, const DeformableSettings& settings, std::string source = "deformable body");
+
+  [[nodiscard]] const DeformableMesh& mesh() const { return mesh_; }
+  [[nodiscard]] const DeformableSettings& settings() const { return settings_; }
+  [[nodiscard]] const ElementModel& model() const { return model_; }
+  [[nodiscard]] const std::vector<ElementGeometry>& geometry() const { return geometry_; }
+  [[nodiscard]] std::size_t nodeCount() const { return mesh_.nodeCount(); }
+  [[nodiscard]] const std::vector<double>& masses() const { return masses_; } ///< lumped (unit: kg)
+
+  [[nodiscard]] const std::vector<Vec3>& positions() const { return state_.positions; }
+  [[nodiscard]] const std::vector<Vec3>& velocities() const { return state_.velocities; }
+  [[nodiscard]] double time() const { return state_.time; }
+  [[nodiscard]] std::uint64_t steps() const { return state_.steps; }
+  void setPositions(const std::vector<Vec3>& positions);   ///< e.g. a prescribed initial deformation
+  void setVelocities(const std::vector<Vec3>& velocities); ///< initial velocities (unit: m/s)
+
+  /// Prescribe the velocity of `node` on the axes of `axes` (bit 0: x, 1: y, 2: z); other axes
+  /// stay free. A fixed node is fixNode(node) (velocity 0 on all axes).
+  void fixNode(std::size_t node, const Vec3& velocity = Vec3::Zero(), unsigned axes = 7U);
+  [[nodiscard]] unsigned fixedAxes(std::size_t node) const { return fixedAxes_[node]; }
+  /// Constant external nodal force (unit: N), added to gravity.
+  void setExternalForce(std::size_t node, const Vec3& force);
+  [[nodiscard]] const std::vector<Vec3>& externalForces() const { return externalForces_; }
+
+  /// The stable step of this mesh and material (StableStep.hpp) with settings().stepSafety.
+  [[nodiscard]] const StableStepEstimate& stableStep() const { return stable_; }
+  /// Advance by dt. Throws core::InputError when dt is not positive or above stableStep().dt (the
+  /// limit, l_min, c_d and the element named) or when massDamping x dt > 1, DeformableStepError
+  /// on an inverted element or a non-finite state.
+  void step(double dt);
+
+  [[nodiscard]] const DeformableStepTimes& stepTimes() const { return times_; }
+
+  /// Internal nodal forces at the current state (unit: N); computed if not ready.
+  [[nodiscard]] std::vector<Vec3> internalForces();
+  [[nodiscard]] double kineticEnergy() const;       ///< 1/2 sum m v^2 (unit: J)
+  [[nodiscard]] double strainEnergy() const;        ///< sum of element stored energies (unit: J)
+  [[nodiscard]] double gravityPotential() const;    ///< -sum m g . x (unit: J)
+  /// Energy of the half-space contacts at the current positions (unit: J).
+  [[nodiscard]] double contactEnergy() const;
+  /// Total contact force on the body from the half-spaces at the current positions (unit: N).
+  [[nodiscard]] Vec3 contactForce() const;
+  [[nodiscard]] double contactGradient() const { return contactGradient_; } ///< G in use (unit: Pa/m)
+  /// Mean Cauchy stress of each element (unit: Pa), tension positive.
+  [[nodiscard]] std::vector<Mat3> elementStresses() const;
+
+  [[nodiscard]] const DeformableState& state() const { return state_; }
+  /// Restore a state of this body (checkpoint); throws core::InputError on a size mismatch.
+  void restore(const DeformableState& state, const std::string& source);
+
+private:
+  void buildNodeElementTable();
+  void computeAccelerations();
+  void checkStep(double dt) const;
+  void gatherElement(std::size_t e, NodeMatrix& x, NodeMatrix& v) const;
+
+  DeformableMesh mesh_;
+  DeformableSettings settings_;
+  std::string source_;
+  ElementModel model_;
+  std::vector<ElementGeometry> geometry_;
+  std::vector<double> masses_;
+  StableStepEstimate stable_;
+  std::vector<unsigned> fixedAxes_;
+  std::vector<Vec3> prescribedVelocity_;
+  std::vector<Vec3> externalForces_;
+  DeformableState state_;
+  DeformableStepTimes times_;
+  std::vector<double> elementForces_;       ///< element e, local node a, axis k at (e * nen + a) * 3 + k (unit: N)
+  std::vector<std::uint8_t> elementFailed_; ///< per element: 1 if inverted in the last force pass
+  std::vector<std::int64_t> nodeSlotStart_; ///< CSR: node n's rows in elementForces_ are nodeSlots_[start[n]..start[n+1])
+  std::vector<std::int64_t> nodeSlots_;
+  std::vector<SurfaceTriangle> surface_;    ///< for contact: the surface as flat triangles
+  double contactGradient_ = 0.0;            ///< G (unit: Pa/m)
+  std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
+};
+
+} // namespace armour::deformable

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file DeformableCheckpoint.hpp
+/// The dynamic state of one deformable body (DeformableState) in a small binary file, so that a
+/// stopped run continues bit for bit. Layout (little-endian, as the machine writes it):
+///   8 bytes magic "ARMDEF01", uint32 format version, uint32 nodes-per-element,
+///   uint64 nodes, uint64 elements, uint64 steps, double time, uint8 accelerations ready,
+///   then nodes x 3 doubles each of positions, velocities and accelerations.
+/// The mesh, material and boundary conditions are not stored: they come from the setup, and the
+/// reader refuses a file whose node and element counts or element order differ. Written
+/// atomically (core/AtomicFile.hpp).
+
+#include "deformable/DeformableBody.hpp"
+
+#include <filesystem>
+
+namespace armour::deformable {
+
+inline constexpr std::uint32_t kDeformableCheckpointVersion = 1;
+
+/// Throws core::InputError naming the path if it cannot be written.
+void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem::path& path);
+
+/// Read a checkpoint into `body`. Throws core::InputError naming the file and what is wrong (not
+/// a checkpoint, another version, another mesh, truncated, non-finite values) and the fix.
+void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody& body);
+
+} // namespace armour::deformable

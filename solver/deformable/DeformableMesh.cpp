@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "deformable/DeformableMesh.hpp"
+
+#include "core/Error.hpp"
+
+#include <unordered_map>
+
+namespace armour::deformable {
+namespace {
+
+void checkTets(const geometry::TetMesh& tets, const char* source) {
+  const auto count = static_cast<std::int64_t>(tets.vertices.size());
+  for (std::size_t t = 0; t < tets.tets.size(); ++t) {
+    for (const auto v : tets.tets[t]) {
+      if (v < 0 || v >= count) {
+        core::failInput(source, "tet {} refers to vertex {}, but there are {} vertices; the mesh is damaged", t, v,
+                        count);
+      }
+    }
+    const double volume = tets.volume(t);
+    if (!(volume > 0.0)) {
+      core::failInput(source,
+                      "tet {} has volume {} m^3: elements must be positively oriented, (b-a).((c-a)x(d-a)) > 0; "
+                      "swap two vertices of inverted tets and remove flat ones",
+                      t, volume);
+    }
+  }
+}
+
+} // namespace
+
+DeformableMesh makeDeformableMesh(const geometry::TetMesh& tets, ElementOrder order, const char* source) {
+  checkTets(tets, source);
+  DeformableMesh mesh;
+  mesh.order = order;
+  mesh.nodes = tets.vertices;
+  mesh.cornerCount = tets.vertices.size();
+  const int nen = nodesPerElement(order);
+  mesh.connectivity.reserve(tets.tets.size() * static_cast<std::size_t>(nen));
+  // Key of an undirected edge: (smaller, larger) corner index packed into 64 bits. The map only
+  // finds an edge's node; numbering comes from the loop order, so it is deterministic.
+  std::unordered_map<std::uint64_t, std::int32_t> edgeNode;
+  for (const auto& tet : tets.tets) {
+    mesh.connectivity.insert(mesh.connectivity.end(), tet.begin(), tet.end());
+    if (order == ElementOrder::Linear) {
+      continue;
+    }
+    for (const auto& [a, b] : kTet10Edges) {
+      const auto lo = static_cast<std::uint64_t>(std::min(tet[a], tet[b]));
+      const auto hi = static_cast<std::uint64_t>(std::max(tet[a], tet[b]));
+      const auto [it, inserted] = edgeNode.try_emplace((lo << 32U) | hi, static_cast<std::int32_t>(mesh.nodes.size()));
+      if (inserted) {
+        mesh.nodes.push_back(0.5 * (tets.vertices[lo] + tets.vertices[hi]));
+      }
+      mesh.connectivity.push_back(it->second);
+    }
+  }
+  return mesh;
+}
+
+} // namespace armour::deformable

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// @file StableStep.hpp
+/// The largest stable step of explicit central differences on a mesh (docs/theory.md,
+/// "Deformable units (seed 002)"):
+///   dt = safety * (l_min / c_d) * (sqrt(1 + xi^2) - xi),   xi = 2 eta / (rho c_d l_min),
+/// c_d = sqrt((lambda + 2 mu) / rho) the dilatational wave speed, l_min the smallest element
+/// length, xi the damping ratio that the viscosity eta gives the highest mode (omega = 2 c_d / l).
+/// Element length: the smallest altitude of the (corner) tet, 3 V / (largest face area), divided by
+/// 2 for 4-node and by 4 for 10-node tets. The divisors were measured: with them l / c_d is at or
+/// below 2 / omega_max of the element itself (lumped masses, linearised at rest) for regular,
+/// cube-split, corner, flat, needle and sliver tets, nu from 0 to 0.49, with and without F-bar
+/// (the ratio 2 / (omega_max l / c_d) lies in 1.00-1.86; test_deformable_element checks it).
+/// The element bound is above the mesh's own limit (Irons' theorem), so safety 1 is stable.
+/// The lengths are those of the reference mesh: a strongly compressed element is stiffer, which
+/// the safety factor must cover.
+
+#include "deformable/DeformableMesh.hpp"
+#include "deformable/NeoHookean.hpp"
+
+#include <cstddef>
+
+namespace armour::deformable {
+
+/// Element length = smallest altitude of the corner tet over this (unit: -).
+inline constexpr double kLinearLengthDivisor = 2.0;
+inline constexpr double kQuadraticLengthDivisor = 4.0;
+
+struct StableStepEstimate {
+  double dt = 0.0;            ///< largest allowed step (unit: s), the safety factor included
+  double lengthMin = 0.0;     ///< l_min (unit: m)
+  std::size_t element = 0;    ///< the element with l_min
+  double waveSpeed = 0.0;     ///< c_d (unit: m/s)
+  double dampingRatio = 0.0;  ///< xi of the highest mode (unit: -)
+  double safety = 0.0;        ///< the safety factor used (unit: -)
+  double contactFrequency = 0.0; ///< omega_c of fully pressed half-space contact (unit: rad/s); 0 = none
+};
+
+/// Element length l_e (unit: m) of element e.
+[[nodiscard]] double elementLength(const DeformableMesh& mesh, std::size_t e);
+
+/// @pre the mesh has elements; material validated; 0 < safety <= 1; contactFrequency >= 0.
+/// With contact, the element bound 2 c_d / l_min and omega_c combine as
+/// omega = sqrt((2 c_d / l_min)^2 + omega_c^2) (a surface node's frequency with its contact spring
+/// is at most that), and dt = safety (2 / omega) (sqrt(1 + xi^2) - xi).
+[[nodiscard]] StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material,
+                                            double safety, double contactFrequency = 0.0);
+
+} // namespace armour::deformable
