@@ -10,6 +10,7 @@
 #include "hydro/HydroStages.hpp"
 #include "io/SceneReader.hpp"
 #include "storm/StormFile.hpp"
+#include "placement/Placer.hpp"
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/Interpenetration.hpp"
 #include "simulation/RunOutputs.hpp"
@@ -145,6 +146,13 @@ void checkScene(const std::string& path, const std::vector<std::string>& sets) {
     }
   }
   std::cout << simulation::describeBuild(scene, built);
+  // A placement's grid, made as `armour place` makes it: a grid that does not fit fails here.
+  if (scene.placement.enabled) {
+    const placement::GridPlan plan = placement::planGrid(scene);
+    std::cout << fmt::format("placement: {} grid points", plan.points.size());
+    if (plan.packingDensity > 0.0) std::cout << fmt::format(", packing density {:.4f} (N Dn^2 / A)", plan.packingDensity);
+    std::cout << "\n";
+  }
   // Hydrodynamic loads: the storm file is opened and validated, and must cover the run.
   if (const std::string hydro = hydro::attachLoadStages(*built.world, scene.hydro, scene.duration); !hydro.empty()) {
     std::cout << hydro << "\n";

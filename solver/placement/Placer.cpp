@@ -309,6 +309,42 @@ io::Body sceneBody(const World& world, BodyId b, const std::string& name, std::s
 
 } // namespace
 
+namespace {
+
+/// The grid settings as `place` uses them: a generated grid starts at the first wall.
+GridSettings effectiveGridSettings(const io::Scene& scene) {
+  GridSettings g = scene.placement.grid;
+  const auto [wallLo, wallHi] = trunkWalls(scene);
+  if (g.file.empty()) {
+    if (g.width <= 0.0 && std::isfinite(wallLo)) g.yStart = std::max(g.yStart, wallLo);
+    if (g.yStart == 0.0 && std::isfinite(wallLo)) g.yStart = wallLo;
+  }
+  return g;
+}
+
+} // namespace
+
+GridPlan planGrid(const io::Scene& scene) {
+  const PlacementSettings& ps = scene.placement;
+  const double dn = std::cbrt(ps.volume);
+  const io::StaticSlope* slope = findSlope(scene);
+  const auto [wallLo, wallHi] = trunkWalls(scene);
+  GridPlan plan;
+  plan.wallWidth = std::isfinite(wallLo) && std::isfinite(wallHi) ? wallHi - wallLo : 0.0;
+  const GridSettings g = effectiveGridSettings(scene);
+  if (!g.file.empty()) {
+    plan.points = readGridFile(g.file);
+    return plan;
+  }
+  if (slope == nullptr)
+    core::failInput(scene.sourceName, "placement.grid: a generated grid lies on a slope, and the scene has none; add "
+                                      "a static slope or give placement.grid.file");
+  const GridSlope gridSlope{slope->origin.x(), slope->origin.y(), slope->tanAlpha};
+  plan.points = generateGrid(g, gridSlope, dn, plan.wallWidth, ps.seed, scene.sourceName);
+  plan.packingDensity = gridSpacing(g, dn, plan.wallWidth, scene.sourceName).packingDensity;
+  return plan;
+}
+
 PlacementResult place(const io::Scene& input, const ProgressFn& progress, const PlaceOptions& options) {
   auto log = core::logger("place");
   const auto wallStart = std::chrono::steady_clock::now();
@@ -329,22 +365,11 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   const auto [wallLo, wallHi] = trunkWalls(scene);
 
   // Grid points first: bad grids fail before anything is built.
-  std::vector<GridPoint> grid;
-  GridSlope gridSlope;
-  if (slope != nullptr) gridSlope = {slope->origin.x(), slope->origin.y(), slope->tanAlpha};
-  double wallWidth = std::isfinite(wallLo) && std::isfinite(wallHi) ? wallHi - wallLo : 0.0;
-  GridSettings gridSettings = ps.grid;
-  if (gridSettings.file.empty()) {
-    if (slope == nullptr)
-      core::failInput(scene.sourceName, "placement.grid: a generated grid lies on a slope, and the scene has none; add "
-                                        "a static slope or give placement.grid.file");
-    if (gridSettings.width <= 0.0 && std::isfinite(wallLo)) gridSettings.yStart = std::max(gridSettings.yStart, wallLo);
-    if (gridSettings.yStart == 0.0 && std::isfinite(wallLo)) gridSettings.yStart = wallLo;
-    grid = generateGrid(gridSettings, gridSlope, dn, wallWidth, ps.seed, scene.sourceName);
-    result.summary.gridPackingDensity = gridSpacing(gridSettings, dn, wallWidth, scene.sourceName).packingDensity;
-  } else {
-    grid = readGridFile(gridSettings.file);
-  }
+  const GridSettings gridSettings = effectiveGridSettings(scene);
+  const GridPlan plan = planGrid(scene);
+  const std::vector<GridPoint>& grid = plan.points;
+  const double wallWidth = plan.wallWidth;
+  result.summary.gridPackingDensity = plan.packingDensity;
 
   // The World of the scene as given (statics and any bodies already there).
   result.built = simulation::buildWorld(scene);

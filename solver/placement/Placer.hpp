@@ -22,6 +22,7 @@
 ///     off their place) are made.
 
 #include "io/Scene.hpp"
+#include "placement/PlacementGrid.hpp"
 #include "placement/PlacementProgress.hpp"
 #include "simulation/SceneBuilder.hpp"
 
@@ -71,5 +72,16 @@ struct PlaceOptions {
 /// Place the units of `scene.placement` on the scene. Throws core::InputError for settings that
 /// cannot work (naming the key) and simulation::SimulationError if the dynamics fail.
 PlacementResult place(const io::Scene& scene, const ProgressFn& progress = {}, const PlaceOptions& options = {});
+
+/// The grid points of a scene's placement block, made and checked as `place` makes them (the
+/// trunk between the walls, a generated grid on the scene's slope, or the grid file), without
+/// building anything: `armour check` uses it so that a grid that cannot be placed fails there.
+struct GridPlan {
+  std::vector<GridPoint> points;
+  double packingDensity = 0.0; ///< of a generated grid, N Dn^2 / A; 0 for a grid file (unit: -)
+  double wallWidth = 0.0;      ///< the trunk between the walls; 0 without both walls (unit: m)
+};
+/// @pre scene.placement.enabled. Throws core::InputError for a grid that does not fit.
+[[nodiscard]] GridPlan planGrid(const io::Scene& scene);
 
 } // namespace armour::placement
