@@ -174,6 +174,7 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  angular_speed = {} rad/s", s.sleep.angularSpeed));
   line(fmt::format("  time = {} s", s.sleep.time));
   line(fmt::format("  wake_load_fraction = {}", s.sleep.wakeLoadFraction));
+  line(fmt::format("body_damping: linear = {} 1/s, angular = {} 1/s", s.bodyDamping.linear, s.bodyDamping.angular));
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const Material& m : s.materials) {

@@ -259,6 +259,14 @@ struct SleepSettings {
   double wakeLoadFraction = 0.01;  ///< a sleeper wakes when its external load changes by this x its weight (unit: -)
 };
 
+/// Viscous damping of every dynamic body's motion, v and omega decaying as exp(-c t): the air and
+/// water resistance of a physics engine's bodies (seed 001: PhysX linear and angular damping 0.9
+/// 1/s, "to model air and water resistance"). Off by default: armour's loads model the water.
+struct BodyDampingSettings {
+  double linear = 0.0;  ///< decay rate of the centroid velocity (unit: 1/s)
+  double angular = 0.0; ///< decay rate of the angular velocity (unit: 1/s)
+};
+
 struct Scene {
   std::string name;                    ///< the scene file's stem, e.g. "pile"
   std::string sourceName;              ///< the file as named by the user (for messages)
@@ -275,6 +283,7 @@ struct Scene {
   ContactSettings contact;
   OutputSettings output;
   SleepSettings sleep;
+  BodyDampingSettings bodyDamping;
   std::vector<Material> materials;
   std::vector<ShapeSpec> shapes;       ///< named shapes first, then those bodies used directly
   std::vector<Body> bodies;

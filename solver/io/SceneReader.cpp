@@ -576,7 +576,7 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 
 const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
-                       "placement",   "initial_state"};
+                       "placement",   "initial_state", "body_damping"};
 const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem",
                            "constraint", "sample_list_slack"};
 const KeyList kContactSolvers{"penalty", "constraint"};
@@ -587,6 +587,7 @@ const KeyList kFdemKeys{"elements_per_unit"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
                           "contacts"};
 const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wake_load_fraction"};
+const KeyList kBodyDampingKeys{"linear", "angular"};
 
 /// contact.constraint (the constraint solver's settings); warned about under the penalty solver.
 void readConstraintSettings(const Block& c, Scene& scene) {
@@ -675,6 +676,11 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.sleep.time = s.number("time", {"s", kNonNegative, "0.5"}, scene.sleep.time);
   scene.sleep.wakeLoadFraction = s.number("wake_load_fraction", {"-", kPositive, "0.01 of the body's weight"},
                                           scene.sleep.wakeLoadFraction);
+
+  const Block d(ctx, top.has("body_damping") ? top.get("body_damping") : YAML::Node(), "body_damping",
+                kBodyDampingKeys);
+  scene.bodyDamping.linear = d.number("linear", {"1/s", kNonNegative, "0.9 (seed 001)"}, scene.bodyDamping.linear);
+  scene.bodyDamping.angular = d.number("angular", {"1/s", kNonNegative, "0.9 (seed 001)"}, scene.bodyDamping.angular);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -175,6 +175,8 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.sleep.angularSpeed = scene.sleep.angularSpeed;
   w.sleep.time = scene.sleep.time;
   w.sleep.wakeLoadFraction = scene.sleep.wakeLoadFraction;
+  w.bodyDamping.linear = scene.bodyDamping.linear;
+  w.bodyDamping.angular = scene.bodyDamping.angular;
   w.recordContacts = scene.output.contacts;
   return w;
 }

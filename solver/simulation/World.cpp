@@ -298,6 +298,7 @@ void World::step() {
 
 void World::finishStep(double dt, StepProfile::Clock::time_point clock) {
   stats_.awakeBodies = bodies_.awakeBodies().size();
+  applyBodyDamping(dt);
   for (BodyId b : bodies_.awakeBodies()) {
     if (!bodies_.position(b).allFinite() || !bodies_.velocity(b).allFinite() ||
         !bodies_.worldAngularVelocity(b).allFinite()) {
@@ -313,6 +314,19 @@ void World::finishStep(double dt, StepProfile::Clock::time_point clock) {
     checkEnergy();
   }
   profile_.add(Stage::Guards, clock);
+}
+
+void World::applyBodyDamping(double dt) {
+  const BodyDamping& d = settings_.bodyDamping;
+  if (d.linear == 0.0 && d.angular == 0.0) return;
+  // The exact decay over the step, applied after it (operator splitting): unconditionally stable,
+  // it only removes energy, and n steps give exp(-c n dt) to round-off whatever the step.
+  const double linear = std::exp(-d.linear * dt), angular = std::exp(-d.angular * dt);
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (bodies_.motionType(b) != dynamics::MotionType::Dynamic) continue;
+    bodies_.setVelocity(b, linear * bodies_.velocity(b));
+    bodies_.setWorldAngularVelocity(b, angular * bodies_.worldAngularVelocity(b));
+  }
 }
 
 void World::evaluateContacts() {

@@ -119,6 +119,12 @@ struct ConstraintSettings {
   double patchAngle = 0.5;            ///< largest angle between normals of one contact patch (unit: rad)
 };
 
+/// Viscous damping of the bodies' motion (io::BodyDampingSettings; docs/theory.md, "Body damping").
+struct BodyDamping {
+  double linear = 0.0;  ///< decay rate of the centroid velocity (unit: 1/s)
+  double angular = 0.0; ///< decay rate of the angular velocity (unit: 1/s)
+};
+
 /// Settings of the whole simulation.
 struct WorldSettings {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);   ///< unit: m/s^2
@@ -141,6 +147,7 @@ struct WorldSettings {
   /// the run, before a point can pass the middle of a thin wall and be pushed out the far side (unit: -).
   double maxOverlapPerInnerDepth = 0.5;
   SleepSettings sleep;
+  BodyDamping bodyDamping;
   EnergyGuardSettings energyGuard;
   bool recordContacts = false;            ///< keep the contact patches of each force evaluation (contactPatches())
 };
@@ -356,6 +363,8 @@ private:
   void keepSleepingHistory(PairHistories& next);
   /// After either solver's step: non-finite guard, sleep, energy guard (World.cpp).
   void finishStep(double dt, StepProfile::Clock::time_point clock);
+  /// Body damping (WorldSettings::bodyDamping): v and omega of the awake dynamic bodies times exp(-c dt).
+  void applyBodyDamping(double dt);
   // WorldConstraint.cpp: the constraint solver's step (contact.solver: constraint).
   void stepConstraint();
   struct PairManifold;

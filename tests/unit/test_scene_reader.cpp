@@ -144,6 +144,8 @@ TEST_F(EveryFeature, RunSettings) {
   EXPECT_EQ(s.sleep.linearSpeed, 0.002);
   EXPECT_EQ(s.sleep.angularSpeed, 0.004);
   EXPECT_EQ(s.sleep.time, 0.25);
+  EXPECT_EQ(s.bodyDamping.linear, 0.9);
+  EXPECT_EQ(s.bodyDamping.angular, 0.5);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
 
@@ -364,6 +366,8 @@ TEST(SceneDefaults, MinimalSceneTakesEveryDefault) {
   EXPECT_EQ(s.sleep.linearSpeed, 1e-3);
   EXPECT_EQ(s.sleep.angularSpeed, 1e-3);
   EXPECT_EQ(s.sleep.time, 0.5);
+  EXPECT_EQ(s.bodyDamping.linear, 0.0) << "off by default";
+  EXPECT_EQ(s.bodyDamping.angular, 0.0);
   ASSERT_EQ(s.bodies.size(), 1u);
   const Body& b = s.bodies[0];
   EXPECT_EQ(b.name, "body0");
@@ -640,6 +644,8 @@ TEST(SceneErrors, OutOfRangeValues) {
   EXPECT_CONTAINS(errorFrom(oneBody() + "static:\n  - {type: slope, material: concrete, tan: 0.5, crest_height: 5, "
                                         "toe_height: 1, toe_top_width: 3, toe_base_width: 2}\n"),
                   "static[0].toe_base_width = 2: must be >= toe_top_width = 3 m");
+  EXPECT_CONTAINS(errorFrom("body_damping: {linear: -0.9}\n" + oneBody()),
+                  "body_damping.linear = -0.9: must be >= 0 (unit: 1/s), e.g. 0.9 (seed 001)");
 }
 
 TEST(SceneErrors, UnknownNamesListTheValidOnes) {
