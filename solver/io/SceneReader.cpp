@@ -632,7 +632,7 @@ void readRunSettings(const Block& top, Scene& scene) {
       scene.timeStep.value = top.number("time_step", {"s", kPositive, "time_step: 1e-4, or time_step: auto"});
     }
   }
-  scene.timeStep.safety = top.number("time_step_safety", {"-", kFraction, "0.2 of the stability limit"}, 0.2);
+  scene.timeStep.safety = top.number("time_step_safety", {"-", kFraction, "0.2 of the stability limit"}, scene.timeStep.safety);
   if (!scene.timeStep.automatic && top.has("time_step_safety"))
     top.warnValue("time_step_safety", "applies to time_step: auto only; the fixed time step is used as given");
   if (!scene.timeStep.automatic && scene.timeStep.value > scene.duration)
