@@ -515,20 +515,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     core::failInput(scene.sourceName, "placement.lowering = slope_normal needs a slope; add one or use vertical");
   const Quat unitFrame = alongNormal ? slopeFrame(slope->tanAlpha) : Quat::Identity(); // deposit -> world
   const Quat toUnitFrame = unitFrame.conjugate();
-  // select: keyed measures tops from the underlayer's: the mean top of the rocks' surface stones.
-  LayerBase layerBase;
-  if (ps.orientation.select == OrientationSelect::Keyed) {
-    const Vec3 origin = slope != nullptr ? Vec3(slope->origin.x(), 0.0, slope->origin.y()) : Vec3::Zero();
-    const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope != nullptr ? slope->tanAlpha : 0.0, origin);
-    std::vector<analysis::PosedMesh> rocks;
-    for (BodyId b : rockBodies)
-      rocks.push_back({&world.shape(world.bodyShape(b)).mesh, world.bodyScale(b), world.bodies().position(b),
-                       world.bodies().orientation(b)});
-    const double inf = std::numeric_limits<double>::infinity();
-    const double top = analysis::meanTopIn(analysis::surfaceStones(rocks, frame), {-inf, inf, -inf, inf});
-    layerBase.normal = toUnitFrame * frame.normal;
-    layerBase.offset = frame.normal.dot(origin) + top;
-  }
   // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
   const Deposit staticDeposit =
       makeDeposit(result.built, toUnitFrame, 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
@@ -614,6 +600,21 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     p.world = world.captureState();
     return p;
   };
+  // select: keyed measures tops from the underlayer's: the mean top of the rocks' surface stones
+  // (here, after a restart has restored the rocks' poses).
+  LayerBase layerBase;
+  if (ps.orientation.select == OrientationSelect::Keyed) {
+    const Vec3 origin = slope != nullptr ? Vec3(slope->origin.x(), 0.0, slope->origin.y()) : Vec3::Zero();
+    const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope != nullptr ? slope->tanAlpha : 0.0, origin);
+    std::vector<analysis::PosedMesh> rocks;
+    for (BodyId b : rockBodies)
+      rocks.push_back({&world.shape(world.bodyShape(b)).mesh, world.bodyScale(b), world.bodies().position(b),
+                       world.bodies().orientation(b)});
+    const double inf = std::numeric_limits<double>::infinity();
+    const double top = analysis::meanTopIn(analysis::surfaceStones(rocks, frame), {-inf, inf, -inf, inf});
+    layerBase.normal = toUnitFrame * frame.normal;
+    layerBase.offset = frame.normal.dot(origin) + top;
+  }
   const double step = 0.05 * dn;
   for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) {
     const GridPoint& g = grid[static_cast<std::size_t>(i)];
