@@ -162,6 +162,20 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
     }
     cell = std::max(cell, boxes[k].sizes().maxCoeff());
   }
+  // Each part's box: a tet or triangle that meets no other part's box cannot touch (most of an
+  // anvil's surface is far from the unit); skipping them changes no sum, only the work.
+  std::vector<Eigen::AlignedBox3d> partBoxes(partCount_);
+  for (std::size_t k = 0; k < tets_.size(); ++k) {
+    partBoxes[tetPart_[k]].extend(boxes[k]);
+  }
+  const auto nearOtherPart = [&partBoxes](const Eigen::AlignedBox3d& box, std::int32_t part) {
+    for (std::size_t p = 0; p < partBoxes.size(); ++p) {
+      if (static_cast<std::int32_t>(p) != part && !partBoxes[p].isEmpty() && partBoxes[p].intersects(box)) {
+        return true;
+      }
+    }
+    return false;
+  };
   const auto cellOf = [cell](const Vec3& p) {
     return Eigen::Array3i((p / cell).array().floor().cast<int>());
   };
@@ -172,6 +186,9 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
   std::vector<std::pair<std::int64_t, std::int32_t>> bins;
   bins.reserve(tets_.size() * 8);
   for (std::size_t k = 0; k < tets_.size(); ++k) {
+    if (!nearOtherPart(boxes[k], tetPart_[k])) {
+      continue;
+    }
     const auto lo = cellOf(boxes[k].min());
     const auto hi = cellOf(boxes[k].max());
     for (int i = lo[0]; i <= hi[0]; ++i) {
@@ -188,6 +205,9 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
     Eigen::AlignedBox3d box;
     for (const auto n : triangles_[t]) {
       box.extend(x[n]);
+    }
+    if (!nearOtherPart(box, trianglePart_[t])) {
+      continue;
     }
     const auto lo = cellOf(box.min());
     const auto hi = cellOf(box.max());

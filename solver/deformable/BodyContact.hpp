@@ -39,8 +39,9 @@
 /// at the point, Z = rho c_d the material's impedance, zeta (unit: -) the given ratio; the pressure
 /// is kept >= 0 (no adhesion).
 ///
-/// Broad phase: the target tets (those with a node on the surface) are binned by their
-/// bounding boxes on a uniform grid of cell = their largest box edge, as a sorted list of
+/// Broad phase: each part's box bounds its target tets; a tet or triangle that meets no other
+/// part's box is skipped. The remaining target tets (those with a node on the surface) are binned
+/// by their bounding boxes on a uniform grid of cell = their largest box edge, as a sorted list of
 /// (cell, element) pairs; each surface triangle takes the elements of the cells its box covers.
 /// All sums run serially in a fixed order (triangle, then element index): the forces do not
 /// depend on the thread count.

@@ -35,17 +35,19 @@ double unitContactForce(const DeformableBody& body) {
 }
 
 TEST(DeformableAnvilDrop, VcrossAtRestCarriesItsWeightOverItsBase) {
-  // Set on the anvil at rest, gravity switched on at t = 0, mass damping 2000 1/s (the vertical
-  // modes of unit and anvil are near 1 400 rad/s, so they decay as exp(-1000 t)) for 10 ms.
+  // Set on the anvil at rest, gravity switched on at t = 0, mass damping 1500 1/s for 15 ms. The
+  // slowest mode that gravity excites is near 735 rad/s (measured: with 2000 1/s, overdamped, the
+  // contact force crept to the weight as exp(-270 t) = exp(-omega^2 / alpha t)); 1500 1/s damps it
+  // about critically, and the modes near 1 400 rad/s (the anvil's quarter wave) at 0.54.
   // Targets: contact force = W within 1 % (the residual motion); mean sigma_zz over the unit's
   // elements in the lowest 0.3 m = -(W / A - rho g 0.15 m) within 5 % (coarse tets of 0.3 m, and the
   // contact pressure is not uniform: it is higher under the base's edges, as for a rigid punch).
   auto settings = coarseVcross(0.0);
-  settings.body.massDamping = 2000.0;
+  settings.body.massDamping = 1500.0;
   auto drop = makeAnvilDrop(settings);
   auto& body = drop.body;
   const double dt = body.stableStep().dt;
-  while (body.time() < 0.01) {
+  while (body.time() < 0.015) {
     body.step(dt);
   }
   const auto& material = settings.body.material;
