@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <numbers>
 
 namespace armour::deformable {
 namespace {
@@ -70,6 +71,85 @@ TEST(DeformableBodyContact, ForcesSumToZeroWithZeroMomentAndPushTheBodiesApart) 
     std::vector<Vec3> g(x.size(), Vec3::Zero());
     const auto apart = contact.add(x, v, g);
     EXPECT_EQ(apart.touchingPairs, 0U);
+  }
+}
+
+TEST(DeformableBodyContact, WorkAroundAClosedLoopIsSmall) {
+  // Energy consistency without an energy: move two nodes of the contact faces, one of each body,
+  // around a closed loop (the upper box sunk 100 um; see below; 720 steps, trapezoidal rule) and
+  // add up the work of the contact forces on them. A force that is the gradient
+  // of a potential does no net work; Munjiza's distribution on the target side is the gradient up to
+  // O(depth / H) (docs/theory.md section 19), so the net work must be a small fraction of the work
+  // done on the way, sum |f . dx|: below 1e-3 (depth / H is about 1e-3 here). Measured: 2e-16
+  // (corner-corner: exactly conservative to round-off), 2e-6 to 1.3e-5 with a mid-edge node. Nodes:
+  // a corner and a mid-edge node of the lower box's top face and of the upper box's bottom face
+  // (tet10).
+  const auto mesh = twoBoxes(Vec3(0.13, 0.07, 1.0 - 1e-4), 3, ElementOrder::Quadratic);
+  const auto triangles = surfaceTriangles(mesh, boundaryFaces(mesh));
+  const BodyContact contact(mesh, triangles, 2.0 * 26.6e9, 0.0, 0.0);
+  const std::vector<Vec3> v(mesh.nodeCount(), Vec3::Zero());
+  // Nodes on the contact plane near (0.5, 0.5): lower top (part 0) and upper bottom (part 1),
+  // one corner (index < cornerCount) and one mid-edge node each.
+  std::vector<std::size_t> chosen;
+  for (int part = 0; part < 2; ++part) {
+    for (const bool corner : {true, false}) {
+      std::size_t best = 0;
+      double bestDistance = 1e9;
+      for (std::size_t n = 0; n < mesh.nodeCount(); ++n) {
+        const double z = part == 0 ? 1.0 : 1.0 - 1e-4;
+        if (contact.nodeParts()[n] != part || (n < mesh.cornerCount) != corner ||
+            std::abs(mesh.nodes[n].z() - z) > 1e-9) {
+          continue;
+        }
+        const double d = (mesh.nodes[n].head<2>() - Eigen::Vector2d(0.55, 0.45)).norm();
+        if (d < bestDistance) {
+          bestDistance = d;
+          best = n;
+        }
+      }
+      chosen.push_back(best);
+    }
+  }
+  // chosen: lower corner, lower mid-edge, upper corner, upper mid-edge. Each pair (one node of
+  // each body) moves through a closed loop in the plane (z_a, z_b): a circle of radius 40 um.
+  // A single node moving alone would test only the symmetry of its own stiffness block; a
+  // non-conservative distribution shows in the coupling between a contactor node and a target
+  // node (d f_a / d x_b != d f_b / d x_a).
+  for (const auto& [a, b] : {std::pair{chosen[0], chosen[2]}, std::pair{chosen[1], chosen[3]},
+                             std::pair{chosen[0], chosen[3]}, std::pair{chosen[1], chosen[2]}}) {
+    std::vector<Vec3> x = mesh.nodes;
+    const Vec3 centreA = x[a];
+    const Vec3 centreB = x[b];
+    constexpr int kSteps = 720;
+    constexpr double kRadius = 4e-5;
+    double net = 0.0;
+    double gross = 0.0;
+    Vec3 previousA = Vec3::Zero();
+    Vec3 previousB = Vec3::Zero();
+    Vec3 previousPositionA = centreA;
+    Vec3 previousPositionB = centreB;
+    for (int k = 0; k <= kSteps; ++k) {
+      const double angle = 2.0 * std::numbers::pi * k / kSteps;
+      x[a] = centreA + kRadius * Vec3(0.0, 0.0, std::cos(angle) - 1.0);
+      x[b] = centreB + kRadius * Vec3(0.0, 0.0, std::sin(angle));
+      std::vector<Vec3> f(x.size(), Vec3::Zero());
+      contact.add(x, v, f);
+      if (k > 0) {
+        const double work = 0.5 * (f[a] + previousA).dot(x[a] - previousPositionA) +
+                            0.5 * (f[b] + previousB).dot(x[b] - previousPositionB);
+        net += work;
+        gross += std::abs(work);
+      }
+      previousA = f[a];
+      previousB = f[b];
+      previousPositionA = x[a];
+      previousPositionB = x[b];
+    }
+    std::cout << "nodes " << a << (a < mesh.cornerCount ? " (corner)" : " (mid-edge)") << " and " << b
+              << (b < mesh.cornerCount ? " (corner)" : " (mid-edge)") << ": net work " << net << " J, gross " << gross
+              << " J\n";
+    EXPECT_GT(gross, 0.0);
+    EXPECT_LT(std::abs(net), 1e-3 * gross);
   }
 }
 
