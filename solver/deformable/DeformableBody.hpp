@@ -135,9 +135,11 @@ public:
   [[nodiscard]] double kineticEnergy() const;       ///< 1/2 sum m v^2 (unit: J)
   [[nodiscard]] double strainEnergy() const;        ///< sum of element stored energies (unit: J)
   [[nodiscard]] double gravityPotential() const;    ///< -sum m g . x (unit: J)
-  /// Energy of the half-space contacts at the current positions (unit: J).
+  /// Energy of the half-space contacts at the current positions (unit: J). The body contact has
+  /// no energy of its own (Munjiza's distribution, BodyContact.hpp): not included.
   [[nodiscard]] double contactEnergy() const;
-  /// Total contact force on the body from the half-spaces at the current positions (unit: N).
+  /// Total contact force on the body from the half-spaces at the current positions (unit: N); the
+  /// body contact sums to zero over the mesh (per part: nodalContactForces()).
   [[nodiscard]] Vec3 contactForce() const;
   /// Body contact (null when settings().bodyContact is off).
   [[nodiscard]] const BodyContact* bodyContact() const { return bodyContact_.get(); }
