@@ -44,6 +44,15 @@ void validateSettings(const DeformableSettings& s, const std::string& source) {
                       length, s.halfSpaces[i].point.x(), s.halfSpaces[i].point.y(), s.halfSpaces[i].point.z());
     }
   }
+  core::requireFinite(s.contactPenalty, source + ": contact_penalty", "Pa");
+  if (s.contactPenalty < 0.0) {
+    core::failInput(source + ": contact_penalty", "{} Pa: must be positive, or 0 for 2 E", s.contactPenalty);
+  }
+  core::requireFinite(s.contactDamping, source + ": contact_damping", "-");
+  if (s.contactDamping < 0.0) {
+    core::failInput(source + ": contact_damping", "{}: must be 0 or positive; a negative damping adds energy",
+                    s.contactDamping);
+  }
   if (!(s.stepSafety > 0.0 && s.stepSafety <= 1.0)) {
     core::failInput(source + ": step_safety", "{}: the safety factor on the stable step must be in (0, 1]",
                     s.stepSafety);
@@ -95,6 +104,17 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
     }
     omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
+  }
+  if (settings_.bodyContact) {
+    const auto triangles = surfaceTriangles(mesh_, boundaryFaces(mesh_));
+    const double penalty =
+        settings_.contactPenalty > 0.0 ? settings_.contactPenalty : 2.0 * settings_.material.youngModulus;
+    const auto lame = lameConstants(settings_.material);
+    const double impedance = std::sqrt((lame.lambda + 2.0 * lame.mu) * settings_.material.density);
+    bodyContact_ = std::make_shared<BodyContact>(mesh_, triangles, penalty, settings_.contactDamping, impedance);
+    // Both contacts press on a node at most as springs in parallel: frequencies add in squares.
+    const double omegaBody = contactFrequency(mesh_, triangles, masses_, bodyContact_->gradientBound());
+    omegaContact = std::sqrt(omegaContact * omegaContact + omegaBody * omegaBody);
   }
   stable_ = deformable::stableStep(mesh_, settings_.material, settings_.stepSafety, omegaContact);
   fixedAxes_.assign(nodes, 0U);
@@ -204,16 +224,19 @@ void DeformableBody::computeAccelerations() {
           source_, e, state_.time, state_.steps));
     }
   }
-  if (!surface_.empty()) {
+  if (!surface_.empty() || bodyContact_) {
     // Serial over surface triangles, in order: the nodal sums do not depend on the threads.
     contactForces_.assign(nodeCount(), Vec3::Zero());
     for (const auto& halfSpace : settings_.halfSpaces) {
       addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, contactForces_);
     }
+    if (bodyContact_) {
+      bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_);
+    }
   }
   const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
   const double alpha = settings_.massDamping;
-  const bool contact = !surface_.empty();
+  const bool contact = !surface_.empty() || bodyContact_;
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t n = 0; n < nodes; ++n) {
     const auto node = static_cast<std::size_t>(n);

@@ -4,7 +4,8 @@
 /// One deformable unit on its own: a tet mesh of compressible Neo-Hookean material advanced by
 /// explicit central differences with lumped mass (seed 002 eq. 1-4, 7-10), under gravity, nodal
 /// forces, fixed or velocity-driven nodes, and frictionless contact with static half-spaces
-/// (HalfSpaceContact.hpp). Contact with other bodies: issue 26, later sessions.
+/// (HalfSpaceContact.hpp) and between the mesh's disconnected parts (BodyContact.hpp: several
+/// bodies of one material as one mesh, e.g. a unit and its anvil).
 ///
 /// Step (velocity form of central differences, "kick-drift-kick"):
 ///   v += dt/2 a;  x += dt v;  a = (f_ext + m g + f_c(x) - f_int(x, v)) / m - alpha v;  v += dt/2 a,
@@ -22,6 +23,7 @@
 /// bits.
 /// Not thread-safe itself: call from one thread.
 
+#include "deformable/BodyContact.hpp"
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/HalfSpaceContact.hpp"
 #include "deformable/NeoHookean.hpp"
@@ -29,6 +31,7 @@
 #include "deformable/TetElement.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,6 +56,17 @@ struct DeformableSettings {
   /// with h the mean edge of the surface triangles: a contact layer ten times stiffer than a
   /// surface element, so a pressure sigma sinks in by sigma h / (10 E).
   double contactGradient = 0.0;
+  /// Contact between the disconnected parts of the mesh (BodyContact.hpp). Off: parts pass
+  /// through each other.
+  bool bodyContact = false;
+  /// Munjiza's penalty p of the body contact (unit: Pa): potential 4 p lambda_min, a pressure
+  /// 4 p d / H at depth d under a face of an element of altitude H. 0 = 2 E: a pressure sigma
+  /// sinks in by sigma H / (8 E), below 1e-4 H for concrete stresses (< 20 MPa); stiffer only
+  /// shortens the step (the contact frequency grows as sqrt(p)).
+  double contactPenalty = 0.0;
+  /// Contact damping of the body contact (unit: -): a pressure zeta rho c_d w with w the closing
+  /// speed; 0 for elastic contact.
+  double contactDamping = 0.0;
 };
 
 /// The dynamic state, all that a restart needs besides the mesh, settings and boundary conditions.
@@ -121,10 +135,18 @@ public:
   [[nodiscard]] double kineticEnergy() const;       ///< 1/2 sum m v^2 (unit: J)
   [[nodiscard]] double strainEnergy() const;        ///< sum of element stored energies (unit: J)
   [[nodiscard]] double gravityPotential() const;    ///< -sum m g . x (unit: J)
-  /// Energy of the half-space contacts at the current positions (unit: J).
+  /// Energy of the half-space contacts at the current positions (unit: J). The body contact has
+  /// no energy of its own (Munjiza's distribution, BodyContact.hpp): not included.
   [[nodiscard]] double contactEnergy() const;
-  /// Total contact force on the body from the half-spaces at the current positions (unit: N).
+  /// Total contact force on the body from the half-spaces at the current positions (unit: N); the
+  /// body contact sums to zero over the mesh (per part: nodalContactForces()).
   [[nodiscard]] Vec3 contactForce() const;
+  /// Body contact (null when settings().bodyContact is off).
+  [[nodiscard]] const BodyContact* bodyContact() const { return bodyContact_.get(); }
+  /// Contact forces on each node, half-space and body contact, at the last force evaluation (unit: N).
+  [[nodiscard]] const std::vector<Vec3>& nodalContactForces() const { return contactForces_; }
+  /// Totals of the body contact at the last force evaluation.
+  [[nodiscard]] const BodyContactStats& bodyContactStats() const { return bodyContactStats_; }
   [[nodiscard]] double contactGradient() const { return contactGradient_; } ///< G in use (unit: Pa/m)
   /// Mean Cauchy stress of each element (unit: Pa), tension positive.
   [[nodiscard]] std::vector<Mat3> elementStresses() const;
@@ -158,6 +180,8 @@ private:
   std::vector<SurfaceTriangle> surface_;    ///< for contact: the surface as flat triangles
   double contactGradient_ = 0.0;            ///< G (unit: Pa/m)
   std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
+  std::shared_ptr<const BodyContact> bodyContact_;
+  BodyContactStats bodyContactStats_;
 };
 
 } // namespace armour::deformable

@@ -58,4 +58,22 @@ DeformableMesh makeDeformableMesh(const geometry::TetMesh& tets, ElementOrder or
   return mesh;
 }
 
+geometry::TetMesh mergeTetMeshes(const std::vector<geometry::TetMesh>& parts, const std::vector<Vec3>& offsets) {
+  geometry::TetMesh out;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const auto base = static_cast<int>(out.vertices.size());
+    const Vec3 offset = p < offsets.size() ? offsets[p] : Vec3::Zero();
+    for (const auto& v : parts[p].vertices) {
+      out.vertices.push_back(v + offset);
+    }
+    for (auto t : parts[p].tets) {
+      for (auto& n : t) {
+        n += base;
+      }
+      out.tets.push_back(t);
+    }
+  }
+  return out;
+}
+
 } // namespace armour::deformable

@@ -50,6 +50,10 @@ struct DeformableMesh {
 /// edge): the same input gives the same numbering.
 /// Throws core::InputError naming `source` when a tet is not positively oriented (volume <= 0)
 /// or refers to a missing vertex.
+/// Several tet meshes as one, each shifted by its offset (unit: m), vertices and tets appended in
+/// the order given: separate bodies in one mesh, touching through BodyContact.hpp.
+geometry::TetMesh mergeTetMeshes(const std::vector<geometry::TetMesh>& parts, const std::vector<Vec3>& offsets);
+
 DeformableMesh makeDeformableMesh(const geometry::TetMesh& tets, ElementOrder order, const char* source = "tet mesh");
 
 } // namespace armour::deformable
