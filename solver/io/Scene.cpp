@@ -174,7 +174,10 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  angular_speed = {} rad/s", s.sleep.angularSpeed));
   line(fmt::format("  time = {} s", s.sleep.time));
   line(fmt::format("  wake_load_fraction = {}", s.sleep.wakeLoadFraction));
-  line(fmt::format("body_damping: linear = {} 1/s, angular = {} 1/s", s.bodyDamping.linear, s.bodyDamping.angular));
+  // Printed only when set: the description is the scene's fingerprint in checkpoints, and scenes
+  // without body damping keep the fingerprint they had before the key existed.
+  if (s.bodyDamping.linear != 0.0 || s.bodyDamping.angular != 0.0)
+    line(fmt::format("body_damping: linear = {} 1/s, angular = {} 1/s", s.bodyDamping.linear, s.bodyDamping.angular));
 
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const Material& m : s.materials) {
