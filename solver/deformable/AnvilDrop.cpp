@@ -57,7 +57,8 @@ AnvilDrop makeAnvilDrop(const AnvilDropSettings& s) {
   settings.bodyContact = true;
   AnvilDrop drop{DeformableBody(makeDeformableMesh(mergeTetMeshes({unit, anvil}, {unitShift, anvilShift}),
                                                    ElementOrder::Quadratic, "anvil drop"),
-                                settings, "anvil drop " + s.shape)};
+                                settings, "anvil drop " + s.shape),
+                 {}, 0.0, 0.0, Vec3::Zero()};
   auto& body = drop.body;
   const auto& parts = body.bodyContact()->nodeParts();
   std::vector<Vec3> velocities(body.nodeCount(), Vec3::Zero());

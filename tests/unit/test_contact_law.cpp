@@ -139,7 +139,9 @@ TEST(ContactLaw, GrowingContactModelReducesToTheClosedFormOnAFace) {
     const DampingByExponent table = dampingByExponentFromRestitution(e);
     for (int i = 0; i < DampingByExponent::kCount; ++i) {
       EXPECT_NEAR(restitutionOfGrowingContact(table.zeta[i], 1.0 + 0.5 * i), e, 1e-4) << "e = " << e << ", i = " << i;
-      if (i > 0) EXPECT_LT(table.zeta[i], table.zeta[i - 1]) << "e = " << e << ", i = " << i;
+      if (i > 0) {
+        EXPECT_LT(table.zeta[i], table.zeta[i - 1]) << "e = " << e << ", i = " << i;
+      }
     }
   }
 }
