@@ -4,15 +4,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace armour::contact {
 
 namespace {
 
+/// Patches per pair this reduction can make (ReductionSettings::maxPatches is clamped to it).
+constexpr int kMaxPatches = 8;
+
 /// Index (into `members`) of the best point by `score`, ties to the lower key; -1 if no score > floor.
 /// `bonus` turns a raw score of a point kept in the previous step into its preferred score.
 template <typename Score, typename Bonus>
-int best(const std::vector<ContactPoint>& points, const std::vector<int>& members, double floor, Score&& score,
+int best(const std::vector<ContactPoint>& points, std::span<const int> members, double floor, Score&& score,
          const std::vector<char>& kept, Bonus&& bonus) {
   int chosen = -1;
   double top = floor;
@@ -28,7 +32,7 @@ int best(const std::vector<ContactPoint>& points, const std::vector<int>& member
 }
 
 /// Up to four points spanning one patch.
-ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, const std::vector<int>& members,
+ContactPatchPoints reducePatch(const std::vector<ContactPoint>& points, std::span<const int> members,
                                const ReductionSettings& settings, const std::vector<char>& kept) {
   ContactPatchPoints patch;
   Vec3 normal = Vec3::Zero();
@@ -114,7 +118,10 @@ void reduceContacts(const std::vector<ContactPoint>& points, const ReductionSett
     return;
   }
   const std::size_t n = points.size();
-  std::vector<char> wasKept(n, 0);
+  // Scratch of this thread, reused from pair to pair (the narrow phase calls this for every pair).
+  thread_local std::vector<char> wasKept;
+  thread_local std::vector<int> patchOf, members;
+  wasKept.assign(n, 0);
   if (!kept.empty()) {
     for (std::size_t i = 0; i < n; ++i) wasKept[i] = std::binary_search(kept.begin(), kept.end(), points[i].key) ? 1 : 0;
   }
@@ -123,10 +130,12 @@ void reduceContacts(const std::vector<ContactPoint>& points, const ReductionSett
   // patch of the nearest seed normal. (The same patches as visiting the points deepest first, each
   // joining the first seed within the angle, without sorting them.)
   const double cosAngle = std::cos(settings.patchAngle);
-  std::vector<int> patchOf(n, -1);
-  std::vector<Vec3> seeds;
+  patchOf.assign(n, -1);
+  Vec3 seeds[kMaxPatches];
+  int patches = 0;
+  const int maxPatches = std::clamp(settings.maxPatches, 1, kMaxPatches);
   std::size_t assigned = 0;
-  while (assigned < n && static_cast<int>(seeds.size()) < settings.maxPatches) {
+  while (assigned < n && patches < maxPatches) {
     int seed = -1;
     for (std::size_t i = 0; i < n; ++i) {
       if (patchOf[i] >= 0) continue;
@@ -136,8 +145,8 @@ void reduceContacts(const std::vector<ContactPoint>& points, const ReductionSett
       }
     }
     const Vec3 normal = points[seed].normal;
-    const int patch = static_cast<int>(seeds.size());
-    seeds.push_back(normal);
+    const int patch = patches++;
+    seeds[patch] = normal;
     for (std::size_t i = 0; i < n; ++i) {
       if (patchOf[i] < 0 && normal.dot(points[i].normal) >= cosAngle) {
         patchOf[i] = patch;
@@ -145,20 +154,27 @@ void reduceContacts(const std::vector<ContactPoint>& points, const ReductionSett
       }
     }
   }
-  std::vector<std::vector<int>> members(seeds.size());
+  // Members of each patch in point order, one array (a counting sort by patch).
+  int start[kMaxPatches + 1] = {};
   for (std::size_t i = 0; i < n; ++i) {
     if (patchOf[i] < 0) {
       double closest = -2.0;
-      for (std::size_t s = 0; s < seeds.size(); ++s) {
+      for (int s = 0; s < patches; ++s) {
         if (const double c = seeds[s].dot(points[i].normal); c > closest) {
           closest = c;
-          patchOf[i] = static_cast<int>(s);
+          patchOf[i] = s;
         }
       }
     }
-    members[static_cast<std::size_t>(patchOf[i])].push_back(static_cast<int>(i));
+    ++start[patchOf[i] + 1];
   }
-  for (const auto& m : members) {
+  for (int s = 0; s < patches; ++s) start[s + 1] += start[s];
+  members.resize(n);
+  int fill[kMaxPatches];
+  std::copy(start, start + patches, fill);
+  for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(fill[patchOf[i]]++)] = static_cast<int>(i);
+  for (int s = 0; s < patches; ++s) {
+    const std::span<const int> m(members.data() + start[s], static_cast<std::size_t>(start[s + 1] - start[s]));
     out.push_back(reducePatch(points, m, settings, wasKept));
   }
 }

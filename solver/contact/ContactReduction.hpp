@@ -32,7 +32,7 @@ namespace armour::contact {
 
 struct ReductionSettings {
   double patchAngle = 0.5;     ///< largest angle between a point's normal and its patch seed's (unit: rad)
-  int maxPatches = 4;          ///< patches per pair; points of further patches join the nearest normal (unit: -)
+  int maxPatches = 4;          ///< patches per pair (1 to 8); points of further patches join the nearest normal (unit: -)
   /// Hysteresis: a point kept in the previous step wins against a deeper one unless that one is
   /// deeper by more than this (unit: m), and against a farther one unless that one is farther by
   /// more than `keepFactor` - 1 (relative). On a flat face every sample is about as deep, and

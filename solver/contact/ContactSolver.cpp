@@ -82,49 +82,100 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
   }
 }
 
+namespace {
+
+/// Which body of a constraint is the ground (index 0: no mass, at rest, never moved): static
+/// geometry is B, a fixed body (a rock of the underlayer) may be either.
+enum class Ground { None, A, B };
+
+/// One constraint's Gauss-Seidel update (solveContacts). The ground's terms are left out: they add
+/// exact zeros. A point whose update is zero (a speculative point that stays open, a friction
+/// impulse already at its clamp) applies nothing.
+template <Ground kGround>
+void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, double invH, const SolveSettings& settings,
+                     bool useBias) {
+  SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
+  const auto relativeVelocity = [&](const ConstraintPoint& p) {
+    if constexpr (kGround == Ground::B) {
+      return Vec3(a.v + a.w.cross(p.rA));
+    } else if constexpr (kGround == Ground::A) {
+      return Vec3(-b.v - b.w.cross(p.rB));
+    } else {
+      return Vec3(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
+    }
+  };
+  const auto apply = [&](const Vec3& P, const ConstraintPoint& p) {
+    if constexpr (kGround != Ground::A) {
+      a.v += a.invMass * P;
+      a.w += a.invInertia * p.rA.cross(P);
+    }
+    if constexpr (kGround != Ground::B) {
+      b.v -= b.invMass * P;
+      b.w -= b.invInertia * p.rB.cross(P);
+    }
+  };
+  const auto moved = [&](const ConstraintPoint& p) {
+    // The ground's anchor stays where it was: its dq is the identity.
+    if constexpr (kGround == Ground::B) {
+      return Vec3(a.dp + a.dq * p.rA - p.rB);
+    } else if constexpr (kGround == Ground::A) {
+      return Vec3(-b.dp + p.rA - b.dq * p.rB);
+    } else {
+      return Vec3(a.dp - b.dp + a.dq * p.rA - b.dq * p.rB);
+    }
+  };
+  for (int k = 0; k < c.count; ++k) {
+    ConstraintPoint& p = c.points[k];
+    const double s = p.baseSeparation + p.normal.dot(moved(p));
+    double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
+    if (s > 0.0) {
+      bias = s * invH; // speculative: may close the gap in this substep, no more
+    } else if (useBias) {
+      bias = std::max(p.softness.biasRate * s, -settings.pushSpeed);
+      massScale = p.softness.massScale;
+      impulseScale = p.softness.impulseScale;
+    }
+    const double vn = p.normal.dot(relativeVelocity(p));
+    const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
+    const double updated = std::max(p.normalImpulse + impulse, 0.0);
+    const double applied = updated - p.normalImpulse;
+    p.normalImpulse = updated;
+    p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
+    if (applied != 0.0) apply(applied * p.normal, p);
+  }
+  for (int k = 0; k < c.count; ++k) {
+    ConstraintPoint& p = c.points[k];
+    const Vec3 vr = relativeVelocity(p);
+    const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
+    double t0 = old0 - p.tangentMass[0] * p.tangent1.dot(vr);
+    double t1 = old1 - p.tangentMass[1] * p.tangent2.dot(vr);
+    const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
+    const double length = std::sqrt(t0 * t0 + t1 * t1);
+    p.slides = length > limit;
+    if (p.slides) {
+      const double scale = length > 0.0 ? limit / length : 0.0;
+      t0 *= scale;
+      t1 *= scale;
+    }
+    p.tangentImpulse[0] = t0;
+    p.tangentImpulse[1] = t1;
+    if (t0 != old0 || t1 != old1) apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p);
+  }
+}
+
+} // namespace
+
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias) {
   const double invH = 1.0 / h;
   for (ContactConstraint& c : constraints) {
-    Pair pair(c, bodies);
-    const Vec3 dp = pair.a->dp - pair.b->dp;
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& p = c.points[k];
-      const Vec3 ds = dp + pair.a->dq * p.rA - pair.b->dq * p.rB;
-      const double s = p.baseSeparation + p.normal.dot(ds);
-      double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
-      if (s > 0.0) {
-        bias = s * invH; // speculative: may close the gap in this substep, no more
-      } else if (useBias) {
-        bias = std::max(p.softness.biasRate * s, -settings.pushSpeed);
-        massScale = p.softness.massScale;
-        impulseScale = p.softness.impulseScale;
-      }
-      const double vn = p.normal.dot(pair.relativeVelocity(p.rA, p.rB));
-      const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
-      const double updated = std::max(p.normalImpulse + impulse, 0.0);
-      const double applied = updated - p.normalImpulse;
-      p.normalImpulse = updated;
-      p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-      pair.apply(applied * p.normal, p.rA, p.rB);
-    }
-    for (int k = 0; k < c.count; ++k) {
-      ConstraintPoint& p = c.points[k];
-      const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
-      const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
-      double t0 = old0 - p.tangentMass[0] * p.tangent1.dot(vr);
-      double t1 = old1 - p.tangentMass[1] * p.tangent2.dot(vr);
-      const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
-      const double length = std::sqrt(t0 * t0 + t1 * t1);
-      p.slides = length > limit;
-      if (p.slides) {
-        const double scale = length > 0.0 ? limit / length : 0.0;
-        t0 *= scale;
-        t1 *= scale;
-      }
-      p.tangentImpulse[0] = t0;
-      p.tangentImpulse[1] = t1;
-      pair.apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p.rA, p.rB);
+    if (c.bodyB == 0) {
+      solveConstraint<Ground::B>(c, bodies, invH, settings, useBias);
+    } else if (c.bodyA == 0) {
+      solveConstraint<Ground::A>(c, bodies, invH, settings, useBias);
+    } else {
+      solveConstraint<Ground::None>(c, bodies, invH, settings, useBias);
     }
   }
 }

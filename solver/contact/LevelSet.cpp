@@ -297,10 +297,14 @@ std::size_t LevelSet::locate(const Vec3& x, double f[3]) const {
 
 double LevelSet::interpolateValue(const Vec3& x) const {
   double f[3];
+  return interpolateAt(locate(x, f), f);
+}
+
+double LevelSet::interpolateAt(std::size_t base, const double f[3]) const {
   const std::size_t sy = static_cast<std::size_t>(n_[0]);
   const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
-  const float* v = values_.data() + locate(x, f);
-  // Same arithmetic as interpolate(): the two agree bit for bit on phi.
+  const float* v = values_.data() + base;
+  // The same arithmetic as gradientAt's differences: phi agrees bit for bit whichever call made it.
   const double v000 = v[0], v100 = v[1], v010 = v[sy], v110 = v[1 + sy];
   const double v001 = v[sz], v101 = v[1 + sz], v011 = v[sy + sz], v111 = v[1 + sy + sz];
   const double fx = f[0], fy = f[1], fz = f[2];
@@ -319,6 +323,16 @@ double LevelSet::value(const Vec3& local) const {
   return d2 > 0.0 ? phi + std::sqrt(d2) : phi;
 }
 
+double LevelSet::value(const Vec3& local, Lookup& at) const {
+  const Vec3 c = local.cwiseMax(gridBounds_.min).cwiseMin(gridBounds_.max);
+  at.base = locate(c, at.f);
+  at.away = local - c;
+  const double phi = interpolateAt(at.base, at.f);
+  const double d2 = at.away.squaredNorm();
+  at.phi = d2 > 0.0 ? phi + std::sqrt(d2) : phi;
+  return at.phi;
+}
+
 double LevelSet::distanceLowerBound(const Vec3& local) const {
   const bool inGrid = (local.array() >= gridBounds_.min.array()).all() && (local.array() <= gridBounds_.max.array()).all();
   if (inGrid) {
@@ -330,12 +344,10 @@ double LevelSet::distanceLowerBound(const Vec3& local) const {
   return std::sqrt(boxDistanceSquared(local, meshBounds_.min, meshBounds_.max));
 }
 
-void LevelSet::interpolate(const Vec3& x, double& phi, Vec3& gradient) const {
-  double f[3];
+Vec3 LevelSet::gradientAt(std::size_t base, const double f[3]) const {
   const std::size_t sx = 1;
   const std::size_t sy = static_cast<std::size_t>(n_[0]);
   const std::size_t sz = sy * static_cast<std::size_t>(n_[1]);
-  const std::size_t base = locate(x, f);
   const double v000 = values_[base];
   const double v100 = values_[base + sx];
   const double v010 = values_[base + sy];
@@ -363,36 +375,35 @@ void LevelSet::interpolate(const Vec3& x, double& phi, Vec3& gradient) const {
   const double dz10 = v101 - v100;
   const double dz01 = v011 - v010;
   const double dz11 = v111 - v110;
-  const double c00 = v000 + fx * dx00; // interpolated along x on the edges (y, z) = (0,0), (1,0), ...
-  const double c10 = v010 + fx * dx10;
-  const double c01 = v001 + fx * dx01;
-  const double c11 = v011 + fx * dx11;
-  phi = gz * (gy * c00 + fy * c10) + fz * (gy * c01 + fy * c11);
-  gradient.x() = (gz * (gy * dx00 + fy * dx10) + fz * (gy * dx01 + fy * dx11)) * invH_;
-  gradient.y() = (gz * (gx * dy00 + fx * dy10) + fz * (gx * dy01 + fx * dy11)) * invH_;
-  gradient.z() = (gy * (gx * dz00 + fx * dz10) + fy * (gx * dz01 + fx * dz11)) * invH_;
+  return {(gz * (gy * dx00 + fy * dx10) + fz * (gy * dx01 + fy * dx11)) * invH_,
+          (gz * (gx * dy00 + fx * dy10) + fz * (gx * dy01 + fx * dy11)) * invH_,
+          (gy * (gx * dz00 + fx * dz10) + fy * (gx * dz01 + fx * dz11)) * invH_};
 }
 
-LevelSetQuery LevelSet::query(const Vec3& local) const {
+LevelSetQuery LevelSet::query(const Lookup& at) const {
   LevelSetQuery q;
-  const Vec3 c = local.cwiseMax(gridBounds_.min).cwiseMin(gridBounds_.max);
-  interpolate(c, q.phi, q.gradient);
-  const Vec3 away = local - c;
-  const double d2 = away.squaredNorm();
+  q.phi = at.phi;
+  q.gradient = gradientAt(at.base, at.f);
+  const double d2 = at.away.squaredNorm();
   if (d2 > 0.0) {
     // Outside the box: phi = |x - c| + phi(c). Along a clamped axis c does not move with x, so
     // the gradient there is that of |x - c|; along a free axis |x - c| does not change.
     const double d = std::sqrt(d2);
-    q.phi += d;
     for (int k = 0; k < 3; ++k) {
-      if (away[k] != 0.0) {
-        q.gradient[k] = away[k] / d;
+      if (at.away[k] != 0.0) {
+        q.gradient[k] = at.away[k] / d;
       }
     }
   }
   const double g = q.gradient.norm();
   q.normal = g >= LevelSetQuery::kMinGradient ? Vec3(q.gradient / g) : Vec3::Zero();
   return q;
+}
+
+LevelSetQuery LevelSet::query(const Vec3& local) const {
+  Lookup at;
+  static_cast<void>(value(local, at));
+  return query(at);
 }
 
 double LevelSet::distance(const Vec3& local) const { return value(local); }

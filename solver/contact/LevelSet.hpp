@@ -151,6 +151,19 @@ public:
   [[nodiscard]] Vec3 normal(const Vec3& local) const { return query(local).normal; }
   /// Distance, gradient and normal at `local` in one lookup.
   [[nodiscard]] LevelSetQuery query(const Vec3& local) const;
+  /// Where value() looked: the cell, the fractions in it, the step out of the grid box, and the
+  /// value found. The narrow phase tests value(local, at) and finishes with query(at) only for the
+  /// samples that pass, without a second lookup.
+  struct Lookup {
+    std::size_t base = 0; ///< index of the cell's node (0, 0, 0)
+    double f[3] = {0.0, 0.0, 0.0};
+    Vec3 away = Vec3::Zero(); ///< local minus its clamp to the grid box (unit: m)
+    double phi = 0.0;         ///< value(local) (unit: m)
+  };
+  /// value(local), and where it was found.
+  [[nodiscard]] double value(const Vec3& local, Lookup& at) const;
+  /// query(local) for the point value(local, at) looked at: the same bits.
+  [[nodiscard]] LevelSetQuery query(const Lookup& at) const;
 
   /// Queries of the same shape scaled uniformly by `scale` about the body origin:
   /// phi_s(x) = s phi(x / s), grad_s(x) = grad(x / s). @pre scale > 0.
@@ -183,8 +196,9 @@ public:
   [[nodiscard]] double buildSeconds() const { return buildSeconds_; }
 
 private:
-  /// Interpolant and its gradient at a point inside the grid box.
-  void interpolate(const Vec3& x, double& phi, Vec3& gradient) const;
+  /// The interpolant of cell `base` at fractions f, and its gradient there.
+  double interpolateAt(std::size_t base, const double f[3]) const;
+  Vec3 gradientAt(std::size_t base, const double f[3]) const;
   /// Index of node (0,0,0) of the cell holding x (clamped to the grid) and x's fractions in it.
   std::size_t locate(const Vec3& x, double f[3]) const;
   /// The interpolant alone (no gradient): the cheap test most samples fail.

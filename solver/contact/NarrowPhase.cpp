@@ -117,8 +117,8 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     return !((L.array() < lo.array()).any() || (L.array() > hi.array()).any());
   };
   // A sample within the margin (in the grown box, value below m): its contact point, if any.
-  const auto emit = [&](std::uint32_t i, const Vec3& L) {
-    const LevelSetQuery q = ls.query(L);
+  const auto emit = [&](std::uint32_t i, const LevelSet::Lookup& at) {
+    const LevelSetQuery q = ls.query(at);
     if (q.phi < 0.0) {
       // Engaged or not, the guard rails see every point inside: past the other body's middle a
       // point faces the wrong way and is not engaged, but the overlap is real.
@@ -135,8 +135,9 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     }
   };
   const auto consider = [&](std::uint32_t i, const Vec3& L) {
-    if (inBox(L, targetLo, targetHi) && ls.value(L) < m) {
-      emit(i, L);
+    LevelSet::Lookup at;
+    if (inBox(L, targetLo, targetHi) && ls.value(L, at) < m) {
+      emit(i, at);
     }
   };
   if (list != nullptr && list->reach >= 0.0 && list->probe == ps.samples && list->target == ts.levelSet) {
@@ -194,12 +195,13 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
       if (!inBox(L, reachLo, reachHi)) {
         continue;
       }
-      const double value = ls.value(L);
+      LevelSet::Lookup at;
+      const double value = ls.value(L, at);
       if (value < reach) {
         list->samples.push_back(i);
       }
       if (value < m && inBox(L, targetLo, targetHi)) {
-        emit(i, L);
+        emit(i, at);
       }
     }
   });

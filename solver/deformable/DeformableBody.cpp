@@ -340,16 +340,24 @@ double DeformableBody::kineticEnergy() const {
   return sum;
 }
 
-double DeformableBody::strainEnergy() const {
-  std::vector<double> energy(mesh_.elementCount());
+template <typename T, typename F>
+std::vector<T> DeformableBody::perElement(F&& f) const {
+  std::vector<T> out(mesh_.elementCount());
   const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t e = 0; e < elements; ++e) {
+    const auto k = static_cast<std::size_t>(e);
     NodeMatrix x;
     NodeMatrix v;
-    gatherElement(static_cast<std::size_t>(e), x, v);
-    energy[static_cast<std::size_t>(e)] = elementStrainEnergy(geometry_[static_cast<std::size_t>(e)], model_, x);
+    gatherElement(k, x, v);
+    out[k] = f(k, x, v);
   }
+  return out;
+}
+
+double DeformableBody::strainEnergy() const {
+  const std::vector<double> energy = perElement<double>(
+      [&](std::size_t e, const NodeMatrix& x, const NodeMatrix&) { return elementStrainEnergy(geometry_[e], model_, x); });
   double sum = 0.0;
   for (const double w : energy) {
     sum += w;
@@ -387,16 +395,9 @@ Vec3 DeformableBody::contactForce() const {
 }
 
 std::vector<Mat3> DeformableBody::elementStresses() const {
-  std::vector<Mat3> out(mesh_.elementCount());
-  const auto elements = static_cast<std::ptrdiff_t>(mesh_.elementCount());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t e = 0; e < elements; ++e) {
-    NodeMatrix x;
-    NodeMatrix v;
-    gatherElement(static_cast<std::size_t>(e), x, v);
-    out[static_cast<std::size_t>(e)] = elementCauchyStress(geometry_[static_cast<std::size_t>(e)], model_, x, v);
-  }
-  return out;
+  return perElement<Mat3>([&](std::size_t e, const NodeMatrix& x, const NodeMatrix& v) {
+    return elementCauchyStress(geometry_[e], model_, x, v);
+  });
 }
 
 void DeformableBody::restore(const DeformableState& state, const std::string& source) {

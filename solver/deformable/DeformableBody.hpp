@@ -160,6 +160,10 @@ private:
   void computeAccelerations();
   void checkStep(double dt) const;
   void gatherElement(std::size_t e, NodeMatrix& x, NodeMatrix& v) const;
+  /// f(e, x, v) of every element e, with its nodes' positions x and velocities v, in parallel
+  /// (each element writes its own entry; defined in DeformableBody.cpp, used there only).
+  template <typename T, typename F>
+  std::vector<T> perElement(F&& f) const;
 
   DeformableMesh mesh_;
   DeformableSettings settings_;

@@ -13,16 +13,6 @@
 
 namespace armour::bench {
 
-double wallNow() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-double cpuNow() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 Window runWindow(World& world, int threads, std::uint64_t steps, double untilTime, bool capture) {
   omp_set_num_threads(threads);
   Window w;

@@ -4,6 +4,7 @@
 // count, the bit-for-bit comparison of their end states, the contact census and motion at the
 // measurement point, and the result a case hands to the tables (SolverBenchReport).
 
+#include "benchmarks/BenchClock.hpp"
 #include "benchmarks/SolverBenchReport.hpp"
 #include "benchmarks/SolverBenchScene.hpp"
 
@@ -19,12 +20,6 @@ class InvalidCase : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
-
-/// Wall-clock time since an arbitrary epoch (unit: s): for intervals.
-double wallNow();
-
-/// CPU time of the whole process, all threads (unit: s): cpu / wall shows how busy the threads were.
-double cpuNow();
 
 /// Counters of a run of steps.
 struct Window {

@@ -47,16 +47,19 @@ double drawScale(const std::string& kind, double dn, std::mt19937_64& rng) {
 namespace {
 armour::simulation::ContactSolverKind benchSolver = armour::simulation::ContactSolverKind::Penalty;
 double benchSampleListSlack = WorldSettings{}.sampleListSlackPerDn;
+double benchSpeculativeMargin = WorldSettings{}.constraint.speculativeMargin;
 } // namespace
 
 void setBenchSolver(armour::simulation::ContactSolverKind solver) { benchSolver = solver; }
 void setBenchSampleListSlack(double perDn) { benchSampleListSlack = perDn; }
+void setBenchSpeculativeMargin(double perDn) { benchSpeculativeMargin = perDn; }
 
 WorldSettings baseSettings(bool sleep) {
   WorldSettings s;
   s.sleep.enabled = sleep;
   s.solver = benchSolver;
   s.sampleListSlackPerDn = benchSampleListSlack;
+  s.constraint.speculativeMargin = benchSpeculativeMargin;
   return s;
 }
 

@@ -51,6 +51,8 @@ WorldSettings baseSettings(bool sleep);
 void setBenchSolver(armour::simulation::ContactSolverKind solver);
 /// The near-sample list slack of every World (WorldSettings::sampleListSlackPerDn; 0 = no lists).
 void setBenchSampleListSlack(double perDn);
+/// The constraint solver's speculative margin of every World (ConstraintSettings::speculativeMargin).
+void setBenchSpeculativeMargin(double perDn);
 
 /// Concrete, 2400 kg/m^3, with the given friction (static = dynamic) and restitution.
 MaterialId addConcrete(World& world, double friction, double restitution);

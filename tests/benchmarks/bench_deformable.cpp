@@ -31,6 +31,7 @@
 // counts, or the case prints INVALID and the program exits with status 2. Figures go to
 // docs/benchmarks.md with the printed command, date and load.
 
+#include "benchmarks/BenchClock.hpp"
 #include "core/BuildInfo.hpp"
 #include "deformable/AnvilDrop.hpp"
 #include "deformable/DeformableBody.hpp"
@@ -58,23 +59,9 @@ using armour::deformable::DeformableSettings;
 using armour::deformable::ElementOrder;
 using armour::deformable::Vec3;
 
-double wallNow() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// CPU time of the whole process, all threads (unit: s).
-double cpuNow() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
+using armour::bench::cpuNow;
+using armour::bench::loadAverages;
+using armour::bench::wallNow;
 
 DeformableBody makeBar(ElementOrder order, int cells) {
   DeformableSettings settings;
@@ -364,17 +351,17 @@ int main(int argc, char** argv) {
     fmt::print("bench_deformable --anvil-drop {} --unit-tets {} --anvil-cells {} --drop-ms {} --viscosity-fraction {} "
                "--corner-distance {} --contact-damping {}\nbuild: {}\nload: {}\n",
                anvil.shape, anvil.unitTets, anvil.anvilCells, dropMs, viscosityFraction, anvil.cornerDistance,
-               anvil.contactDamping, armour::core::buildInfo(), loadAverage());
+               anvil.contactDamping, armour::core::buildInfo(), loadAverages());
     return anvilDrop(anvil);
   }
   if (dropTets > 0) {
     fmt::print("bench_deformable --vcross-drop {} --drop-ms {} --viscosity-fraction {}\nbuild: {}\nload: {}\n", dropTets,
-               dropMs, viscosityFraction, armour::core::buildInfo(), loadAverage());
+               dropMs, viscosityFraction, armour::core::buildInfo(), loadAverages());
     return vcrossDrop(dropTets, dropMs, viscosityFraction);
   }
 
   fmt::print("bench_deformable --cells {} --steps {} --threads {}\n", cells, steps, fmt::join(threads, ","));
-  fmt::print("build: {}\nload before: {}\n", armour::core::buildInfo(), loadAverage());
+  fmt::print("build: {}\nload before: {}\n", armour::core::buildInfo(), loadAverages());
   bool valid = true;
   for (const auto order : {ElementOrder::Linear, ElementOrder::Quadratic}) {
     const std::size_t elements = 6UL * cells * cells * 4 * cells;
@@ -398,6 +385,6 @@ int main(int argc, char** argv) {
                  100.0 * t.stages.update / t.wall);
     }
   }
-  fmt::print("load after: {}\n", loadAverage());
+  fmt::print("load after: {}\n", loadAverages());
   return valid ? 0 : 2;
 }

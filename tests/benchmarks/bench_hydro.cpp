@@ -17,6 +17,7 @@
 // program exits with status 2 (timing a wrong result is worthless). Figures go to
 // docs/benchmarks.md with the printed command.
 
+#include "benchmarks/BenchClock.hpp"
 #include "core/BuildInfo.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "hydro/StormLoads.hpp"
@@ -46,17 +47,8 @@ using armour::simulation::Quat;
 using armour::simulation::Vec3;
 using armour::simulation::World;
 
-double wallNow() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// CPU time of the whole process, all threads (unit: s): cpu / wall shows how busy the threads
-/// were (on a shared machine, whether the second thread got a core at all).
-double cpuNow() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+using armour::bench::cpuNow;
+using armour::bench::wallNow;
 
 struct Options {
   int units = 242;

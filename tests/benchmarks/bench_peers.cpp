@@ -20,6 +20,7 @@
 // This program is built only when CMake finds Bullet (libbullet-dev): an optional benchmark, never
 // a dependency of the solver (scripts/bench-peers installs Bullet, builds and runs it).
 
+#include "benchmarks/BenchClock.hpp"
 #include "benchmarks/PeersBullet.hpp"
 #include "benchmarks/SolverBenchPile.hpp"
 #include "benchmarks/SolverBenchReport.hpp"
@@ -51,12 +52,7 @@ double threadCpuNow() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-std::string loadAverages() {
-  std::ifstream in("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  in >> a >> b >> c;
-  return fmt::format("{:.2f} {:.2f} {:.2f}", a, b, c);
-}
+using armour::bench::loadAverages;
 
 /// A unit slower than this is still (unit: m/s); one that moved less than this x 1 s over the
 /// drift window has not drifted: 1 cm/s, a hundredth of Dn per second.

@@ -232,6 +232,10 @@ int main(int argc, char** argv) {
   double sampleSlack = armour::simulation::WorldSettings{}.sampleListSlackPerDn;
   app.add_option("--sample-slack", sampleSlack,
                  "near-sample list slack per Dn (WorldSettings::sampleListSlackPerDn; 0 = no lists)");
+  double margin = armour::simulation::WorldSettings{}.constraint.speculativeMargin;
+  app.add_option("--speculative-margin", margin,
+                 "constraint solver's speculative margin per Dn (contact.constraint.speculative_margin)")
+      ->check(CLI::NonNegativeNumber);
 
   PileOptions pile;
   auto* pileCmd = app.add_subcommand("pile", "N units dropped into a walled box; time K steps after landing");
@@ -324,7 +328,9 @@ int main(int argc, char** argv) {
   armour::bench::setBenchSolver(solver == "constraint" ? armour::simulation::ContactSolverKind::Constraint
                                                        : armour::simulation::ContactSolverKind::Penalty);
   armour::bench::setBenchSampleListSlack(sampleSlack);
-  std::printf("contact solver: %s, near-sample slack %g Dn\n", solver.c_str(), sampleSlack);
+  armour::bench::setBenchSpeculativeMargin(margin);
+  std::printf("contact solver: %s, near-sample slack %g Dn, speculative margin %g Dn\n", solver.c_str(), sampleSlack,
+              margin);
 
   try {
     if (modelsCmd->parsed()) {
