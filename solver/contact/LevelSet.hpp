@@ -162,7 +162,8 @@ public:
   };
   /// value(local), and where it was found.
   [[nodiscard]] double value(const Vec3& local, Lookup& at) const;
-  /// query(local) for the point value(local, at) looked at: the same bits.
+  /// query(local) for the point value(local, at) looked at: the same bits. `at` must come from
+  /// this level set's value().
   [[nodiscard]] LevelSetQuery query(const Lookup& at) const;
 
   /// Queries of the same shape scaled uniformly by `scale` about the body origin:

@@ -542,6 +542,34 @@ TEST(LevelSetOutside, PositiveBoundedAndContinuousAtTheGridBox) {
   EXPECT_GT(ls.distance(Vec3(1e3, 0.0, 0.0)), 1e3 - grid.max.x());
 }
 
+TEST(LevelSetLookup, FinishingAQueryFromTheValueTestGivesTheSameBits) {
+  // The narrow phase tests value(x, at) against the margin and finishes only the samples that pass
+  // with query(at): a query made that way must equal query(x) bit for bit, and its phi the value
+  // tested, inside the grid box and outside it (where phi = |x - c| + phi(c)); otherwise a sample
+  // could pass the test with one value and be pushed with another.
+  const LevelSet& ls = shapeLevelSet("coreloc");
+  const Box3 grid = ls.gridBounds();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.3, 1.3); // 30 % beyond the box on each side
+  int outside = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const Vec3 x = grid.min + Vec3(u(rng), u(rng), u(rng)).cwiseProduct(grid.size());
+    LevelSet::Lookup at;
+    const double v = ls.value(x, at);
+    const LevelSetQuery finished = ls.query(at);
+    const LevelSetQuery direct = ls.query(x);
+    ASSERT_EQ(v, ls.value(x)) << x.transpose();
+    ASSERT_EQ(finished.phi, v) << x.transpose();
+    ASSERT_EQ(direct.phi, v) << x.transpose();
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(finished.gradient[k], direct.gradient[k]) << x.transpose();
+      ASSERT_EQ(finished.normal[k], direct.normal[k]) << x.transpose();
+    }
+    outside += at.away.squaredNorm() > 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(outside, 5000) << "the points must cover the outside of the grid box too";
+}
+
 TEST(LevelSetCulling, MayPenetrateIsConservative) {
   const LevelSet& ls = shapeLevelSet("dolos");
   const double s = 1.7; // a scaled instance
