@@ -323,6 +323,7 @@ TEST(CaseChecks, DynamicMeshIsRefusedNamingTheMeshTypeAndTheFix) {
   EXPECT_NE(error.find("`dynamicFvMesh staticFvMesh;`"), std::string::npos) << error;
   std::ofstream(d / "constant/dynamicMeshDict") << "dynamicFvMesh staticFvMesh;\n";
   EXPECT_NO_THROW(proxy::requireStaticMesh(d));
+  fs::remove_all(d);
 }
 
 TEST(CaseChecks, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
@@ -355,6 +356,7 @@ TEST(CaseChecks, GravityNotAlongMinusZIsRefusedNamingTransformPoints) {
   const std::string error = inputError([&] { proxy::sampleSurfaces(o); });
   EXPECT_NE(error.find("transformPoints"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(o.output));
+  fs::remove_all(d);
 }
 
 TEST(CaseChecks, SourceCaseIsWrittenAsTheSamplerWritesIt) {
@@ -366,4 +368,5 @@ TEST(CaseChecks, SourceCaseIsWrittenAsTheSamplerWritesIt) {
   EXPECT_EQ(proxy::sourceCasePath(d / "."), expected);       // "case/." (foam-proxy's default --case .)
   EXPECT_EQ(proxy::sourceCasePath(d / "x" / ".."), expected);
   EXPECT_EQ(proxy::sourceCasePath("/"), "/");
+  fs::remove_all(d);
 }
