@@ -9,7 +9,13 @@ namespace armour::contact {
 
 namespace {
 
-/// The two bodies of a constraint (index 0: the ground, whose zero inverse mass keeps it at rest).
+/// Which body of a constraint is the ground (index 0: no mass, at rest, never moved): static
+/// geometry is B, a fixed body (a rock of the underlayer) may be either.
+enum class Ground { None, A, B };
+
+/// The two bodies of a constraint. With kGround set, the ground's terms are left out: they add
+/// exact zeros (its velocities and motion are zero, its dq the identity, its inverse mass zero).
+template <Ground kGround = Ground::None>
 struct Pair {
   SolverBody* a;
   SolverBody* b;
@@ -17,14 +23,35 @@ struct Pair {
       : a(&bodies[static_cast<std::size_t>(c.bodyA)]), b(&bodies[static_cast<std::size_t>(c.bodyB)]) {}
   /// Impulse P on A at rA, -P on B at rB.
   void apply(const Vec3& P, const Vec3& rA, const Vec3& rB) const {
-    a->v += a->invMass * P;
-    a->w += a->invInertia * rA.cross(P);
-    b->v -= b->invMass * P;
-    b->w -= b->invInertia * rB.cross(P);
+    if constexpr (kGround != Ground::A) {
+      a->v += a->invMass * P;
+      a->w += a->invInertia * rA.cross(P);
+    }
+    if constexpr (kGround != Ground::B) {
+      b->v -= b->invMass * P;
+      b->w -= b->invInertia * rB.cross(P);
+    }
   }
   /// Relative velocity of A's material point at rA against B's at rB.
   [[nodiscard]] Vec3 relativeVelocity(const Vec3& rA, const Vec3& rB) const {
-    return a->v + a->w.cross(rA) - b->v - b->w.cross(rB);
+    if constexpr (kGround == Ground::B) {
+      return a->v + a->w.cross(rA);
+    } else if constexpr (kGround == Ground::A) {
+      return -b->v - b->w.cross(rB);
+    } else {
+      return a->v + a->w.cross(rA) - b->v - b->w.cross(rB);
+    }
+  }
+  /// How far A's anchor has moved against B's since the step start, plus rA - rB (the ground's
+  /// anchor stays where it was).
+  [[nodiscard]] Vec3 moved(const Vec3& rA, const Vec3& rB) const {
+    if constexpr (kGround == Ground::B) {
+      return a->dp + a->dq * rA - rB;
+    } else if constexpr (kGround == Ground::A) {
+      return -b->dp + rA - b->dq * rB;
+    } else {
+      return a->dp - b->dp + a->dq * rA - b->dq * rB;
+    }
   }
 };
 
@@ -73,7 +100,7 @@ void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodi
 
 void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {
   for (const ContactConstraint& c : constraints) {
-    Pair pair(c, bodies);
+    const Pair<> pair(c, bodies);
     for (int k = 0; k < c.count; ++k) {
       const ConstraintPoint& p = c.points[k];
       const Vec3 P = p.normalImpulse * p.normal + p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
@@ -84,50 +111,15 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
 
 namespace {
 
-/// Which body of a constraint is the ground (index 0: no mass, at rest, never moved): static
-/// geometry is B, a fixed body (a rock of the underlayer) may be either.
-enum class Ground { None, A, B };
-
-/// One constraint's Gauss-Seidel update (solveContacts). The ground's terms are left out: they add
-/// exact zeros. A point whose update is zero (a speculative point that stays open, a friction
-/// impulse already at its clamp) applies nothing.
+/// One constraint's Gauss-Seidel update (solveContacts). A point whose update is zero (a
+/// speculative point that stays open, a friction impulse already at its clamp) applies nothing.
 template <Ground kGround>
 void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, double invH, const SolveSettings& settings,
                      bool useBias) {
-  SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
-  SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-  const auto relativeVelocity = [&](const ConstraintPoint& p) {
-    if constexpr (kGround == Ground::B) {
-      return Vec3(a.v + a.w.cross(p.rA));
-    } else if constexpr (kGround == Ground::A) {
-      return Vec3(-b.v - b.w.cross(p.rB));
-    } else {
-      return Vec3(a.v + a.w.cross(p.rA) - b.v - b.w.cross(p.rB));
-    }
-  };
-  const auto apply = [&](const Vec3& P, const ConstraintPoint& p) {
-    if constexpr (kGround != Ground::A) {
-      a.v += a.invMass * P;
-      a.w += a.invInertia * p.rA.cross(P);
-    }
-    if constexpr (kGround != Ground::B) {
-      b.v -= b.invMass * P;
-      b.w -= b.invInertia * p.rB.cross(P);
-    }
-  };
-  const auto moved = [&](const ConstraintPoint& p) {
-    // The ground's anchor stays where it was: its dq is the identity.
-    if constexpr (kGround == Ground::B) {
-      return Vec3(a.dp + a.dq * p.rA - p.rB);
-    } else if constexpr (kGround == Ground::A) {
-      return Vec3(-b.dp + p.rA - b.dq * p.rB);
-    } else {
-      return Vec3(a.dp - b.dp + a.dq * p.rA - b.dq * p.rB);
-    }
-  };
+  const Pair<kGround> pair(c, bodies);
   for (int k = 0; k < c.count; ++k) {
     ConstraintPoint& p = c.points[k];
-    const double s = p.baseSeparation + p.normal.dot(moved(p));
+    const double s = p.baseSeparation + p.normal.dot(pair.moved(p.rA, p.rB));
     double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
     if (s > 0.0) {
       bias = s * invH; // speculative: may close the gap in this substep, no more
@@ -136,17 +128,17 @@ void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, doub
       massScale = p.softness.massScale;
       impulseScale = p.softness.impulseScale;
     }
-    const double vn = p.normal.dot(relativeVelocity(p));
+    const double vn = p.normal.dot(pair.relativeVelocity(p.rA, p.rB));
     const double impulse = -p.normalMass * massScale * (vn + bias) - impulseScale * p.normalImpulse;
     const double updated = std::max(p.normalImpulse + impulse, 0.0);
     const double applied = updated - p.normalImpulse;
     p.normalImpulse = updated;
     p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
-    if (applied != 0.0) apply(applied * p.normal, p);
+    if (applied != 0.0) pair.apply(applied * p.normal, p.rA, p.rB);
   }
   for (int k = 0; k < c.count; ++k) {
     ConstraintPoint& p = c.points[k];
-    const Vec3 vr = relativeVelocity(p);
+    const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
     const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
     double t0 = old0 - p.tangentMass[0] * p.tangent1.dot(vr);
     double t1 = old1 - p.tangentMass[1] * p.tangent2.dot(vr);
@@ -160,7 +152,7 @@ void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, doub
     }
     p.tangentImpulse[0] = t0;
     p.tangentImpulse[1] = t1;
-    if (t0 != old0 || t1 != old1) apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p);
+    if (t0 != old0 || t1 != old1) pair.apply((t0 - old0) * p.tangent1 + (t1 - old1) * p.tangent2, p.rA, p.rB);
   }
 }
 
@@ -190,7 +182,7 @@ void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<S
       if (c.restitution == 0.0) {
         continue;
       }
-      Pair pair(c, bodies);
+      const Pair<> pair(c, bodies);
       for (int k = 0; k < c.count; ++k) {
         ConstraintPoint& p = c.points[k];
         if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0.0) {

@@ -25,12 +25,31 @@ inline double cpuNow() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-/// The 1, 5 and 15 minute load averages of /proc/loadavg, e.g. "2.01 1.87 1.52", or "unknown".
-inline std::string loadAverages() {
+/// CPU time of the calling thread (unit: s).
+inline double threadCpuNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// The 1, 5 and 15 minute load averages of /proc/loadavg, or -1 each where it cannot be read.
+struct LoadAverages {
+  double one = -1.0, five = -1.0, fifteen = -1.0;
+};
+inline LoadAverages readLoadAverages() {
   std::ifstream in("/proc/loadavg");
-  double a = 0.0, b = 0.0, c = 0.0;
-  if (!(in >> a >> b >> c)) return "unknown";
-  return fmt::format("{:.2f} {:.2f} {:.2f}", a, b, c);
+  LoadAverages l;
+  in >> l.one >> l.five >> l.fifteen;
+  return l;
+}
+
+/// One-minute load average: a shared machine's other work shows here (and in cpu / wall).
+inline double loadAverage() { return readLoadAverages().one; }
+
+/// The three load averages as text, e.g. "2.01 1.87 1.52".
+inline std::string loadAverages() {
+  const LoadAverages l = readLoadAverages();
+  return fmt::format("{:.2f} {:.2f} {:.2f}", l.one, l.five, l.fifteen);
 }
 
 } // namespace armour::bench

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "benchmarks/SolverBenchReport.hpp"
 
+#include "benchmarks/BenchClock.hpp"
 #include "benchmarks/SolverBenchArmourLayer.hpp"
 #include "benchmarks/SolverBenchCase.hpp"
 #include "benchmarks/SolverBenchPile.hpp"
@@ -59,13 +60,6 @@ double peakResidentBytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return 1024.0 * static_cast<double>(usage.ru_maxrss);
-}
-
-double loadAverage() {
-  std::ifstream f("/proc/loadavg");
-  double load = -1.0;
-  f >> load;
-  return load;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -28,9 +28,6 @@ double peakResidentBytes();
 
 constexpr double kMiB = 1024.0 * 1024.0;
 
-/// One-minute load average: a shared machine's other work shows here (and in cpu / wall).
-double loadAverage();
-
 // ---------------------------------------------------------------------------------------------
 // Headings and number formats
 

@@ -46,13 +46,8 @@ namespace bench = armour::bench;
 namespace sim = armour::simulation;
 using armour::simulation::Vec3;
 
-double threadCpuNow() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 using armour::bench::loadAverages;
+using armour::bench::threadCpuNow;
 
 /// A unit slower than this is still (unit: m/s); one that moved less than this x 1 s over the
 /// drift window has not drifted: 1 cm/s, a hundredth of Dn per second.
