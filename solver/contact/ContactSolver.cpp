@@ -139,9 +139,16 @@ void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, doub
   for (int k = 0; k < c.count; ++k) {
     ConstraintPoint& p = c.points[k];
     const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
+    double b0 = 0.0, b1 = 0.0; // the anchor's bias: pull the slip made since the point stuck back
+    if (useBias && settings.frictionAnchors && p.softness.biasRate > 0.0) {
+      const Vec3 step = pair.moved(p.rA, p.rB) - (p.rA - p.rB);
+      const double cap = settings.pushSpeed;
+      b0 = std::clamp(p.softness.biasRate * (p.slip[0] + p.tangent1.dot(step)), -cap, cap);
+      b1 = std::clamp(p.softness.biasRate * (p.slip[1] + p.tangent2.dot(step)), -cap, cap);
+    }
     const double old0 = p.tangentImpulse[0], old1 = p.tangentImpulse[1];
-    double t0 = old0 - p.tangentMass[0] * p.tangent1.dot(vr);
-    double t1 = old1 - p.tangentMass[1] * p.tangent2.dot(vr);
+    double t0 = old0 - p.tangentMass[0] * (p.tangent1.dot(vr) + b0);
+    double t1 = old1 - p.tangentMass[1] * (p.tangent2.dot(vr) + b1);
     const double limit = (p.sliding ? c.frictionDynamic : c.friction) * p.normalImpulse;
     const double length = std::sqrt(t0 * t0 + t1 * t1);
     p.slides = length > limit;
@@ -170,6 +177,16 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
       solveConstraint<Ground::None>(c, bodies, invH, settings, useBias);
     }
   }
+}
+
+Vec3 slipAtEnd(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies) {
+  if (p.slides || p.normalImpulse == 0.0) {
+    return Vec3::Zero();
+  }
+  const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
+  const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)]; // the ground: dp 0, dq identity
+  const Vec3 step = a.dp - b.dp + a.dq * p.rA - b.dq * p.rB - (p.rA - p.rB);
+  return (p.slip[0] + p.tangent1.dot(step)) * p.tangent1 + (p.slip[1] + p.tangent2.dot(step)) * p.tangent2;
 }
 
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,

@@ -29,9 +29,14 @@
 /// a the point stands for (ContactReduction), c = 2 zeta sqrt(k m_n). A point
 /// whose k m_n^-1 exceeds (pi / (2 h))^2 gets that bound instead (Box2D's cap at a quarter of the
 /// substep rate): stiffer than the substep can resolve, it behaves as rigid with Baumgarte-free push.
-/// Friction: Coulomb, the tangential impulse (t1, t2) += -m_t v_t, clamped to the disk mu lambda,
-/// mu = mu_d at a point that slid in the previous step, mu_s at one that stuck: a velocity-level
-/// constraint without a friction spring (one was tried and crept more: docs/theory.md, "Friction").
+/// Friction: Coulomb, the tangential impulse (t1, t2) += -m_t (v_t + b u), clamped to the disk
+/// mu lambda, mu = mu_d at a point that slid in the previous step, mu_s at one that stuck: a
+/// velocity-level constraint, by default without a friction anchor (u = 0). With frictionAnchors
+/// (contact.constraint.friction_anchors, off by default), u is the slip the point has made since it
+/// stuck (carried from step to step, let go when it slides) and b the normal spring's bias rate, in
+/// the solve only (the relax takes it out again); no impulse scale: the anchor corrects a position
+/// error, it is not a spring that must stretch to carry a load (such a spring was tried in session
+/// 14 and crept more). Measured in docs/theory.md, "Friction".
 ///
 /// Determinism: serial Gauss-Seidel in constraint order; any thread count gives the same bits.
 
@@ -81,6 +86,7 @@ struct ConstraintPoint {
   double tangentMass[2] = {0, 0}; ///< unit: kg
   double normalImpulse = 0.0;     ///< accumulated per substep (unit: N s)
   double tangentImpulse[2] = {0, 0}; ///< along t1, t2 (unit: N s)
+  double slip[2] = {0, 0};        ///< slip carried since the point stuck, along t1, t2 (unit: m; friction anchors)
   double maxNormalImpulse = 0.0;  ///< largest over the step's substeps (unit: N s)
   double approachSpeed = 0.0;     ///< normal relative velocity at prepare, < 0 approaching (unit: m/s)
   double stiffness = 0.0;         ///< the point's spring E_p a / L, a its tributary area (unit: N/m)
@@ -105,6 +111,7 @@ struct SolveSettings {
   double pushSpeed = 3.0;             ///< largest speed of the position correction (unit: m/s)
   double restitutionThreshold = 0.2;  ///< approach speed below which impacts are inelastic (unit: m/s)
   int restitutionPasses = 8;          ///< Gauss-Seidel passes of the restitution (unit: -)
+  bool frictionAnchors = false;       ///< pull a sticking point's slip back (see the file comment)
 };
 
 /// Tangents t1, t2 completing the unit normal n to a right-handed frame (deterministic).
@@ -120,6 +127,11 @@ void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<So
 /// One Gauss-Seidel pass over all constraints. useBias: the solve (true) or the relax (false).
 void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias);
+
+/// A point's slip at the end of the step (world, in its tangent plane; unit: m): the slip it carried
+/// in plus the tangential motion of its anchors over the step; zero where it slid or carried no
+/// normal impulse (its anchor is let go). Read after the substeps (bodies' dp, dq final).
+Vec3 slipAtEnd(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies);
 
 /// Restitution after the substeps (see the file comment).
 void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,

@@ -211,6 +211,7 @@ struct ConstraintSolverSettings {
   double restitutionThreshold = 0.2; ///< unit: m/s
   double speculativeMargin = 0.05;   ///< unit: Dn
   double patchAngle = 0.5;           ///< unit: rad
+  bool frictionAnchors = false;      ///< slip of a sticking point is pulled back (theory.md, "Friction")
 };
 
 /// Contact model and resolution, relative to each body's nominal diameter Dn = V^(1/3). The

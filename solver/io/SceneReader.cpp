@@ -581,7 +581,8 @@ const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells
                            "constraint", "sample_list_slack"};
 const KeyList kContactSolvers{"penalty", "constraint"};
 const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
-                              "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle"};
+                              "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle",
+                              "friction_anchors"};
 const KeyList kContactModels{"levelset", "fdem"};
 const KeyList kFdemKeys{"elements_per_unit"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
@@ -610,6 +611,7 @@ void readConstraintSettings(const Block& c, Scene& scene) {
   s.speculativeMargin = k.number("speculative_margin", {"Dn", kMargin, "0.05"}, s.speculativeMargin);
   constexpr Range kAngle{0.0, 1.5707963267948966, true, true};
   s.patchAngle = k.number("patch_angle", {"rad", kAngle, "0.5"}, s.patchAngle);
+  s.frictionAnchors = k.flag("friction_anchors", s.frictionAnchors);
 }
 
 void readRunSettings(const Block& top, Scene& scene) {

@@ -170,6 +170,7 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.constraint.restitutionThreshold = cs.restitutionThreshold;
   w.constraint.speculativeMargin = cs.speculativeMargin;
   w.constraint.patchAngle = cs.patchAngle;
+  w.constraint.frictionAnchors = cs.frictionAnchors;
   w.sleep.enabled = scene.sleep.enabled;
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;

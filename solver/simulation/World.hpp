@@ -117,6 +117,11 @@ struct ConstraintSettings {
   double restitutionThreshold = 0.2;  ///< approach speed below which impacts are inelastic (unit: m/s)
   double speculativeMargin = 0.05;    ///< gap within which contacts are speculative, as a fraction of the pair's smaller Dn (unit: -)
   double patchAngle = 0.5;            ///< largest angle between normals of one contact patch (unit: rad)
+  /// Friction anchors (ours, session 18): the slip a point makes while it sticks is carried from
+  /// step to step and pulled back by the point's spring rate. Off by default: measured, they stop
+  /// a tilted pack's slow creep sooner but neither change the storm damage nor help the 100:1
+  /// stack or the Dolos pile (docs/theory.md, "Friction").
+  bool frictionAnchors = false;
 };
 
 /// Viscous damping of the bodies' motion (io::BodyDampingSettings; docs/theory.md, "Body damping").

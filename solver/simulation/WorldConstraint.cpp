@@ -213,6 +213,10 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
           p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
           p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
           p.sliding = old->sliding;
+          if (cs.frictionAnchors) {
+            p.slip[0] = old->stretch.dot(p.tangent1); // the part in the new tangent plane
+            p.slip[1] = old->stretch.dot(p.tangent2);
+          }
           ++warmStarted;
         }
       }
@@ -257,7 +261,8 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
         const contact::ConstraintPoint& p = k.points[j];
         contact::PointHistory ph;
         ph.sliding = p.slides;
-        // ph.stretch stays zero: the constraint solver has no friction springs (ContactSolver.hpp).
+        // The friction anchor's slip (ContactSolver.hpp), in the checkpoint's contact_stretch.
+        if (settings_.constraint.frictionAnchors) ph.stretch = contact::slipAtEnd(k, p, solverBodies_);
         ph.normalImpulse = p.normalImpulse;
         ph.tangentImpulse = p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
         history.emplace_back(p.key, ph);
@@ -323,7 +328,8 @@ void World::stepConstraint() {
   buildConstraints(manifolds, h);
   clock = profile_.add(Stage::Prepare, clock);
 
-  const contact::SolveSettings solve{settings_.constraint.pushSpeed, settings_.constraint.restitutionThreshold};
+  contact::SolveSettings solve{settings_.constraint.pushSpeed, settings_.constraint.restitutionThreshold};
+  solve.frictionAnchors = settings_.constraint.frictionAnchors;
   for (int i = 0; i < substeps; ++i) {
     dynamics::kick(bodies_, h, settings_.gravity);
     clock = profile_.add(Stage::Integrate, clock);

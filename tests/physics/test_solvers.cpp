@@ -151,7 +151,8 @@ std::string paramName(const ::testing::TestParamInfo<ContactSolverKind>& info) {
 struct Slope : CubeScene {
   BodyId block = 0;
   Vec3 downhill;
-  Slope(ContactSolverKind kind, double theta, double mu) : CubeScene(concrete(0.3, mu), settingsFor(kind)) {
+  Slope(ContactSolverKind kind, double theta, double mu) : Slope(settingsFor(kind), theta, mu) {}
+  Slope(const WorldSettings& settings, double theta, double mu) : CubeScene(concrete(0.3, mu), settings) {
     const Vec3 normal(std::sin(theta), 0, std::cos(theta));
     downhill = Vec3(std::cos(theta), 0, -std::sin(theta));
     addFloor(normal);
@@ -367,8 +368,16 @@ TEST(ConstraintSolver, SmallestUsefulStepHoldsTheRestingState) {
 namespace {
 
 /// A loose pile of 18 cubes (3 x 3 x 2, small random tilts) under the constraint solver.
+/// Constraint-solver settings with friction anchors on (contact.constraint.friction_anchors).
+WorldSettings withAnchors(bool sleep = false) {
+  WorldSettings s = settingsFor(ContactSolverKind::Constraint, sleep);
+  s.constraint.frictionAnchors = true;
+  return s;
+}
+
 struct Pile : CubeScene {
-  explicit Pile(bool sleep = false) : CubeScene(concrete(0.3, 0.6), settingsFor(ContactSolverKind::Constraint, sleep)) {
+  explicit Pile(bool sleep = false, bool anchors = false)
+      : CubeScene(concrete(0.3, 0.6), anchors ? withAnchors(sleep) : settingsFor(ContactSolverKind::Constraint, sleep)) {
     addFloor();
     std::mt19937_64 rng(11);
     for (int k = 0; k < 2; ++k) {
@@ -420,6 +429,43 @@ TEST(ConstraintSolver, RestartFromACheckpointIsBitIdentical) {
   const auto a = straight.state(), b = restarted.state();
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "state entry " << i;
+}
+
+TEST(ConstraintSolver, FrictionAnchorsHoldBelowTheFrictionAngleSlideAboveItAndRestartBitIdentical) {
+  // contact.constraint.friction_anchors (off by default; docs/theory.md, "Friction"): the anchors
+  // may not hold a block that must slide, nor let one creep that must stick, and their slips are
+  // in the checkpoint (contact_stretch): a restart gives the same bits.
+  const double below = 25.0 * std::numbers::pi / 180.0, above = 35.0 * std::numbers::pi / 180.0;
+  Slope holds(withAnchors(), below, 0.75); // tan 25 deg = 0.466 < 0.75
+  holds.world.advanceTo(1.0);
+  const double x0 = holds.along();
+  holds.world.advanceTo(61.0);
+  EXPECT_LT(std::abs(holds.along() - x0), 1e-4) << "drift over 60 s (m)";
+  Slope slides(withAnchors(), above, 0.4); // a = g (sin 35 - 0.4 cos 35) = 2.413 m/s^2
+  slides.world.advanceTo(0.5);
+  const double v0 = slides.world.bodies().velocity(slides.block).dot(slides.downhill);
+  slides.world.advanceTo(1.5);
+  const double v1 = slides.world.bodies().velocity(slides.block).dot(slides.downhill);
+  const double expected = kG * (std::sin(above) - 0.4 * std::cos(above));
+  EXPECT_NEAR(v1 - v0, expected, 0.02 * expected);
+
+  Pile straight(false, true);
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  Checkpoint c;
+  c.state = straight.world.captureState();
+  const auto path = std::filesystem::temp_directory_path() / "armour-test-constraint-anchors-restart.nc";
+  writeCheckpoint(path, c);
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  Pile restarted(false, true);
+  restarted.world.restoreState(readCheckpoint(path).state);
+  std::filesystem::remove(path);
+  for (int n = 0; n < 100; ++n) restarted.world.step();
+  const auto a = straight.state(), b = restarted.state();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "state entry " << i;
+  Pile without;
+  for (int n = 0; n < 200; ++n) without.world.step();
+  EXPECT_NE(without.state(), a) << "the anchors must act on the pile (else this test checks nothing)";
 }
 
 TEST(ConstraintSolver, WarmStartCarriesTheRestingLoad) {

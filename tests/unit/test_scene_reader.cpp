@@ -948,6 +948,10 @@ TEST(SceneContactSolver, ConstraintSettingsAreReadAndBadOnesNamed) {
   EXPECT_DOUBLE_EQ(c.contact.constraint.timeStep, 0.01);
   EXPECT_EQ(c.contact.constraint.substeps, 8u);
   EXPECT_DOUBLE_EQ(c.contact.constraint.dampingRatio, 10.0);
+  EXPECT_FALSE(c.contact.constraint.frictionAnchors) << "friction anchors are off by default";
+  const Scene a = parseScene("contact: {solver: constraint, constraint: {friction_anchors: true}}\n" + oneBody(),
+                             kScenes, "t.yaml");
+  EXPECT_TRUE(a.contact.constraint.frictionAnchors);
   const std::string fdem = errorFrom("contact: {model: fdem, solver: constraint}\n" + oneBody());
   EXPECT_NE(fdem.find("contact.solver"), std::string::npos) << fdem;
   EXPECT_NE(fdem.find("use contact.model: levelset"), std::string::npos) << fdem;
