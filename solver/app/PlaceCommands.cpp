@@ -10,6 +10,7 @@
 #include "placement/PlacedScene.hpp"
 #include "placement/Placer.hpp"
 #include "simulation/CheckpointFile.hpp"
+#include "simulation/Interpenetration.hpp"
 #include "simulation/World.hpp"
 
 #include <fmt/format.h>
@@ -143,6 +144,20 @@ void placeScene(const PlaceOptions& o) {
   std::cout << placement::summaryText(result);
   std::cout << fmt::format("placed scene: {}\ntables: {}/units.csv, placement.json, placement.txt\n",
                            scenePath.string(), scene.output.folder.string());
+  // A placement can end with units inside the statics or each other (a grid reaching past the end
+  // of its slope, units pushed through a thin static piece): `armour run` and `storm` would refuse
+  // the placed scene, so say so now, with the fix, instead of exiting 0.
+  const auto overlaps = simulation::measureInterpenetration(*result.built.world, result.built.planes);
+  std::cout << simulation::describeInterpenetration(overlaps) << "\n";
+  try {
+    simulation::refuseInterpenetration(overlaps, scenePath.string());
+  } catch (const core::InputError& e) {
+    core::failInput(o.file, "the placement ended with bodies inside each other or the statics, which `armour run` "
+                            "refuses: {}. Check that the placement grid fits on its underlayer (rows x dy against the "
+                            "slope's length: fewer rows, or a higher crest); the placed scene and its tables were "
+                            "written for inspection",
+                    e.what());
+  }
 }
 
 } // namespace

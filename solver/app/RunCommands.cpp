@@ -289,6 +289,7 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
                               "are not carried over, only the bodies' state",
                               file, c.applicationState, contactModel);
     s.contacts.clear();
+    s.manifoldCache.clear();
   }
   try {
     world.restoreState(s);

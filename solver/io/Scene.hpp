@@ -212,6 +212,7 @@ struct ConstraintSolverSettings {
   double speculativeMargin = 0.05;   ///< unit: Dn
   double patchAngle = 0.5;           ///< unit: rad
   bool frictionAnchors = false;      ///< slip of a sticking point is pulled back (theory.md, "Friction")
+  double reuseDistance = 0.001;      ///< unit: Dn; 0 = a full narrow phase for every pair at every step
 };
 
 /// Contact model and resolution, relative to each body's nominal diameter Dn = V^(1/3). The

@@ -582,7 +582,7 @@ const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells
 const KeyList kContactSolvers{"penalty", "constraint"};
 const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
                               "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle",
-                              "friction_anchors"};
+                              "friction_anchors", "reuse_distance"};
 const KeyList kContactModels{"levelset", "fdem"};
 const KeyList kFdemKeys{"elements_per_unit"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
@@ -612,6 +612,11 @@ void readConstraintSettings(const Block& c, Scene& scene) {
   constexpr Range kAngle{0.0, 1.5707963267948966, true, true};
   s.patchAngle = k.number("patch_angle", {"rad", kAngle, "0.5"}, s.patchAngle);
   s.frictionAnchors = k.flag("friction_anchors", s.frictionAnchors);
+  // Below the speculative margin, so that no contact can appear unseen while a pair's patches are reused.
+  const Range kReuse{0.0, std::min(0.5 * s.speculativeMargin, 0.05), false, false};
+  s.reuseDistance = k.number("reuse_distance", {"Dn", kReuse, "0.001; 0 = off; at most half the speculative margin"},
+                             s.reuseDistance);
+  if (!k.has("reuse_distance")) s.reuseDistance = std::min(s.reuseDistance, 0.5 * s.speculativeMargin);
 }
 
 void readRunSettings(const Block& top, Scene& scene) {

@@ -408,6 +408,14 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
       const auto used = static_cast<unsigned long long>(s.loadStages[k].second.size());
       w.check(nc_put_att_ulonglong(ncid, stageVars.back(), "used_length", NC_UINT64, 1, &used), "write an attribute");
     }
+    // The constraint solver's reused manifolds (flat; absent when empty).
+    int cacheVar = -1;
+    if (!s.manifoldCache.empty()) {
+      int dim = -1;
+      w.check(nc_def_dim(ncid, "manifold_cache_length", s.manifoldCache.size(), &dim), "define a dimension");
+      cacheVar = define("manifold_cache", NC_DOUBLE, {dim}, nullptr,
+                        "constraint solver: reused contact patches per pair (World::saveManifoldCache)");
+    }
     for (int var : {position, velocity, momentum, force, torque, externalForce, externalTorque, sleepLoad}) {
       w.text(ncid, var, "comment", kAxesComment);
     }
@@ -513,6 +521,9 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
         }
         put(names, text);
       }
+    }
+    if (cacheVar >= 0) {
+      put(cacheVar, s.manifoldCache);
     }
     for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
       std::vector<double> values = s.loadStages[k].second;
@@ -699,6 +710,11 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     nc_get_att_text(r.id(), var, "stage_name", name.data());
     values.resize(used);
     s.loadStages.emplace_back(name, std::move(values));
+  }
+  if (nc_inq_varid(r.id(), "manifold_cache", &unused) == NC_NOERR) {
+    int dim = -1;
+    const std::size_t length = r.dimension("manifold_cache_length", dim);
+    r.get("manifold_cache", r.variable("manifold_cache", NC_DOUBLE, {dim}), length, s.manifoldCache);
   }
   if (nc_inq_varid(r.id(), "body_name", &unused) == NC_NOERR) {
     int strDim = -1;

@@ -171,6 +171,7 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.constraint.speculativeMargin = cs.speculativeMargin;
   w.constraint.patchAngle = cs.patchAngle;
   w.constraint.frictionAnchors = cs.frictionAnchors;
+  w.constraint.reuseDistance = cs.reuseDistance;
   w.sleep.enabled = scene.sleep.enabled;
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;

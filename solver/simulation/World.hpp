@@ -122,6 +122,11 @@ struct ConstraintSettings {
   /// a tilted pack's slow creep sooner but neither change the storm damage nor help the 100:1
   /// stack or the Dolos pile (docs/theory.md, "Friction").
   bool frictionAnchors = false;
+  /// Manifold reuse (ours, session 18; Jolt's body-pair cache is the same idea): a pair whose
+  /// relative pose has moved less than this x Dn (and turned less than 2 x this rad) since its last
+  /// full narrow phase, and cannot close that much in one step, keeps that narrow phase's patches,
+  /// their depths moved with the relative motion (docs/theory.md, "Manifold reuse") (unit: Dn).
+  double reuseDistance = 0.001;
 };
 
 /// Viscous damping of the bodies' motion (io::BodyDampingSettings; docs/theory.md, "Body damping").
@@ -230,6 +235,7 @@ public:
 struct StepStatistics {
   std::size_t candidatePairs = 0;   ///< broad-phase pairs (bodies and planes)
   std::size_t warmStarted = 0;      ///< constraint solver: reduced points that found their impulses of the last step
+  std::size_t reusedPairs = 0;      ///< constraint solver: pairs that kept their patches (manifold reuse)
   std::size_t contactPoints = 0;    ///< engaged sample points (fdem: element-pair and face records)
   std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
   std::size_t sampleSearches = 0;   ///< body-pair directions searched in full (near-sample lists made)
@@ -373,6 +379,26 @@ private:
   // WorldConstraint.cpp: the constraint solver's step (contact.solver: constraint).
   void stepConstraint();
   struct PairManifold;
+  /// Manifold reuse (WorldManifoldCache.cpp; docs/theory.md, "Manifold reuse"): a pair's reduced
+  /// patches at its last full narrow phase, points in A's and B's frames, normals in B's, with A's
+  /// pose in B's frame then (B static: the world).
+  struct CachedManifold {
+    Vec3 relP = Vec3::Zero();
+    Quat relQ = Quat::Identity();
+    double maxOverlap = 0.0;
+    std::vector<contact::ContactPatchPoints> patches; ///< points in A's frame, normals in B's
+    std::vector<std::array<Vec3, 4>> pointsB;         ///< the same points in B's frame
+  };
+  std::map<contact::BodyPair, CachedManifold> manifoldCache_;
+  /// A's pose in B's frame (B static: the world).
+  void relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const;
+  /// m.key's cached patches moved to the current poses, if the pair has moved less than the reuse
+  /// distance since they were found and `travel` (m, what it may close in this step) is below it too.
+  bool reuseManifold(PairManifold& m, double travel) const;
+  /// The cache after a narrow phase: reused pairs keep their entries, the others' are made anew.
+  void cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused);
+  [[nodiscard]] std::vector<double> saveManifoldCache() const;
+  void restoreManifoldCache(const std::vector<double>& flat);
   void collideConstraint(std::vector<PairManifold>& manifolds);
   void buildConstraints(std::vector<PairManifold>& manifolds, double h);
   void storeConstraintResults(const std::vector<PairManifold>& manifolds, double dt);
@@ -413,6 +439,7 @@ private:
   std::vector<contact::ContactConstraint> constraints_;
   std::vector<std::uint32_t> constraintPair_;      ///< constraint -> manifold index
   std::size_t warmStarted_ = 0;                    ///< points of this step's constraints that found their impulses
+  std::size_t reusedPairs_ = 0;                    ///< pairs of this step that kept their patches
   std::vector<Vec3> stepStartPosition_;            ///< awake bodies' x at the step start (m)
   std::vector<Quat> stepStartOrientation_;
   StepProfile profile_;

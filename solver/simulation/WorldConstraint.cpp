@@ -22,13 +22,6 @@ namespace armour::simulation {
 using detail::kPlaneBit;
 using detail::kStaticBits;
 
-/// One candidate pair's reduced contact patches: written by one thread, read serially.
-struct World::PairManifold {
-  contact::BodyPair key;
-  std::vector<contact::ContactPatchPoints> patches;
-  double maxOverlap = 0.0; ///< deepest sample inside, for the guard rails (unit: m)
-};
-
 namespace {
 
 /// Hysteresis of the contact reduction (ContactReduction.hpp): a point kept in the previous step
@@ -93,11 +86,17 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
     const Vec3 vb = (b != a && bodies_.isAwake(b)) ? bodies_.velocity(b) : Vec3::Zero();
     return 1.1 * dt * ((va - vb).norm() + rim(a) + (b != a ? rim(b) : 0.0));
   };
+  const bool reuse = settings_.constraint.reuseDistance > 0.0;
+  std::vector<char> reused(keys.size(), 0);
 #pragma omp parallel for schedule(dynamic, 1) if (keys.size() >= 16)
   for (std::size_t w = 0; w < keys.size(); ++w) {
     PairManifold& m = manifolds[w];
     m.key = keys[w];
     const BodyId a = m.key.first;
+    if (reuse && reuseManifold(m, travel(a, (m.key.second & kStaticBits) != 0 ? a : m.key.second))) {
+      reused[w] = 1;
+      continue;
+    }
     std::vector<contact::ContactPoint> points;
     if ((m.key.second & kStaticBits) != 0) {
       const bool isPlane = (m.key.second & kPlaneBit) != 0;
@@ -122,6 +121,12 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
     pairReduction.keepDepth = kKeepDepthPerDn * bodyDn(a);
     pairReduction.rampDepth = kStiffnessRampPerDn * bodyDn(a);
     contact::reduceContacts(points, pairReduction, kept, m.patches);
+  }
+  reusedPairs_ = static_cast<std::size_t>(std::count(reused.begin(), reused.end(), char{1}));
+  if (reuse) {
+    cacheManifolds(manifolds, reused);
+  } else {
+    manifoldCache_.clear();
   }
 }
 
@@ -241,6 +246,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
     stats_.maxOverlap = std::max(stats_.maxOverlap, m.maxOverlap);
   }
   stats_.warmStarted = warmStarted_;
+  stats_.reusedPairs = reusedPairs_;
   auto forces = bodies_.forces();
   auto torques = bodies_.torques();
   PairHistories next;

@@ -69,3 +69,15 @@ inline StaticTarget staticTarget(const std::vector<StaticPlane>& planes, const s
 }
 
 } // namespace armour::simulation::detail
+
+namespace armour::simulation {
+
+/// One candidate pair's reduced contact patches (constraint solver): written by one thread, read
+/// serially.
+struct World::PairManifold {
+  contact::BodyPair key;
+  std::vector<contact::ContactPatchPoints> patches;
+  double maxOverlap = 0.0; ///< deepest sample inside, for the guard rails (unit: m)
+};
+
+} // namespace armour::simulation

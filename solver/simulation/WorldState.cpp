@@ -50,6 +50,7 @@ WorldState World::captureState() const {
       s.contacts.push_back({pair.first, pair.second, key, h.stretch, h.sliding, h.normalImpulse, h.tangentImpulse});
     }
   }
+  s.manifoldCache = saveManifoldCache();
   return s;
 }
 
@@ -132,6 +133,7 @@ void World::restoreState(const WorldState& s) {
     std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     history_.emplace_back(pair, std::move(points));
   }
+  restoreManifoldCache(s.manifoldCache);
   forcesReady_ = s.forcesReady;
   boxesValid_ = false;
 }

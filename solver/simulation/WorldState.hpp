@@ -56,6 +56,9 @@ struct WorldState {
   std::vector<ContactPointState> contacts; ///< sorted by (first, second, key)
   /// Each load stage's own state (LoadStage::saveState), in the order the stages were added.
   std::vector<std::pair<std::string, std::vector<double>>> loadStages;
+  /// The constraint solver's reused manifolds (World::CachedManifold, flattened by
+  /// World::saveManifoldCache; empty without reuse).
+  std::vector<double> manifoldCache;
 };
 
 } // namespace armour::simulation

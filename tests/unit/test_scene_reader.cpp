@@ -952,6 +952,14 @@ TEST(SceneContactSolver, ConstraintSettingsAreReadAndBadOnesNamed) {
   const Scene a = parseScene("contact: {solver: constraint, constraint: {friction_anchors: true}}\n" + oneBody(),
                              kScenes, "t.yaml");
   EXPECT_TRUE(a.contact.constraint.frictionAnchors);
+  // Manifold reuse: 0.001 Dn, at most half the speculative margin (else a contact could appear unseen).
+  EXPECT_DOUBLE_EQ(c.contact.constraint.reuseDistance, 0.001);
+  const Scene small = parseScene("contact: {solver: constraint, constraint: {speculative_margin: 0.001}}\n" + oneBody(),
+                                 kScenes, "t.yaml");
+  EXPECT_DOUBLE_EQ(small.contact.constraint.reuseDistance, 0.0005) << "the default follows a small margin";
+  const std::string reuse = errorFrom("contact: {solver: constraint, constraint: {reuse_distance: 0.03}}\n" + oneBody());
+  EXPECT_NE(reuse.find("contact.constraint.reuse_distance"), std::string::npos) << reuse;
+  EXPECT_NE(reuse.find("0.025"), std::string::npos) << "the limit: half the margin of 0.05 Dn; " << reuse;
   const std::string fdem = errorFrom("contact: {model: fdem, solver: constraint}\n" + oneBody());
   EXPECT_NE(fdem.find("contact.solver"), std::string::npos) << fdem;
   EXPECT_NE(fdem.find("use contact.model: levelset"), std::string::npos) << fdem;

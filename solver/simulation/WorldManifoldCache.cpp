@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Manifold reuse of the constraint solver (contact.constraint.reuse_distance; docs/theory.md,
+// "Manifold reuse"): a pair that has hardly moved against its partner since its last full narrow
+// phase keeps that narrow phase's reduced patches, carried to the current poses, instead of
+// querying its samples again. The same idea as Jolt's body-pair cache; our own code. The cache is
+// part of the World's state (captureState / restoreState), so restarts stay bit-identical.
+#include "simulation/World.hpp"
+
+#include "core/Error.hpp"
+#include "simulation/WorldInternal.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace armour::simulation {
+
+using detail::kStaticBits;
+
+namespace {
+
+/// Layout version of the flattened cache (saveManifoldCache).
+constexpr double kCacheTag = 1.0;
+
+} // namespace
+
+void World::relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const {
+  const BodyId a = key.first;
+  if ((key.second & kStaticBits) != 0) {
+    p = bodies_.position(a);
+    q = bodies_.orientation(a);
+    return;
+  }
+  const Quat qb = bodies_.orientation(key.second);
+  p = qb.conjugate() * (bodies_.position(a) - bodies_.position(key.second));
+  q = qb.conjugate() * bodies_.orientation(a);
+}
+
+bool World::reuseManifold(PairManifold& m, double travel) const {
+  const auto it = manifoldCache_.find(m.key);
+  if (it == manifoldCache_.end()) {
+    return false;
+  }
+  const CachedManifold& cm = it->second;
+  const BodyId a = m.key.first;
+  const double limit = settings_.constraint.reuseDistance * bodyDn(a);
+  Vec3 p;
+  Quat q;
+  relativePose(m.key, p, q);
+  // Turned by angle: a point half a Dn from the centre moves by angle Dn / 2.
+  const double angle = 2.0 * std::acos(std::min(1.0, std::abs(q.dot(cm.relQ))));
+  if (!((p - cm.relP).norm() < limit) || !(angle * 0.5 * bodyDn(a) < limit) || !(travel < limit)) {
+    return false;
+  }
+  const bool isStatic = (m.key.second & kStaticBits) != 0;
+  const Vec3 pb = isStatic ? Vec3::Zero() : bodies_.position(m.key.second);
+  const Quat qb = isStatic ? Quat::Identity() : bodies_.orientation(m.key.second);
+  const Vec3& xa = bodies_.position(a);
+  const Quat& qa = bodies_.orientation(a);
+  m.patches = cm.patches;
+  m.maxOverlap = cm.maxOverlap;
+  for (std::size_t i = 0; i < m.patches.size(); ++i) {
+    contact::ContactPatchPoints& patch = m.patches[i];
+    patch.normal = qb * patch.normal;
+    for (int k = 0; k < patch.count; ++k) {
+      // The depth moves with the relative motion of the point's two material points along B's
+      // normal (linear in the motion; the reuse distance bounds what is left out).
+      const Vec3 onA = xa + qa * patch.points[k];
+      const Vec3 onB = pb + qb * cm.pointsB[i][static_cast<std::size_t>(k)];
+      const Vec3 n = qb * patch.normals[k];
+      patch.depths[k] -= n.dot(onA - onB);
+      patch.points[k] = onA;
+      patch.normals[k] = n;
+    }
+  }
+  return true;
+}
+
+void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused) {
+  std::map<contact::BodyPair, CachedManifold> next;
+  for (std::size_t w = 0; w < manifolds.size(); ++w) {
+    const PairManifold& m = manifolds[w];
+    if (reused[w] != 0) {
+      next.emplace(m.key, std::move(manifoldCache_.at(m.key))); // the pose of its full narrow phase
+      continue;
+    }
+    CachedManifold cm;
+    relativePose(m.key, cm.relP, cm.relQ);
+    const bool isStatic = (m.key.second & kStaticBits) != 0;
+    const Vec3 pb = isStatic ? Vec3::Zero() : bodies_.position(m.key.second);
+    const Quat qb = isStatic ? Quat::Identity() : bodies_.orientation(m.key.second);
+    const Vec3& xa = bodies_.position(m.key.first);
+    const Quat& qa = bodies_.orientation(m.key.first);
+    cm.maxOverlap = m.maxOverlap;
+    cm.patches = m.patches;
+    cm.pointsB.resize(m.patches.size());
+    for (std::size_t i = 0; i < cm.patches.size(); ++i) {
+      contact::ContactPatchPoints& patch = cm.patches[i];
+      patch.normal = qb.conjugate() * patch.normal;
+      for (int k = 0; k < patch.count; ++k) {
+        cm.pointsB[i][static_cast<std::size_t>(k)] = qb.conjugate() * (patch.points[k] - pb);
+        patch.points[k] = qa.conjugate() * (patch.points[k] - xa);
+        patch.normals[k] = qb.conjugate() * patch.normals[k];
+      }
+    }
+    next.emplace(m.key, std::move(cm));
+  }
+  manifoldCache_ = std::move(next);
+}
+
+std::vector<double> World::saveManifoldCache() const {
+  std::vector<double> flat;
+  if (manifoldCache_.empty()) {
+    return flat;
+  }
+  flat.push_back(kCacheTag);
+  flat.push_back(static_cast<double>(manifoldCache_.size()));
+  const auto vec = [&](const Vec3& v) { flat.insert(flat.end(), {v.x(), v.y(), v.z()}); };
+  for (const auto& [key, cm] : manifoldCache_) {
+    flat.push_back(static_cast<double>(key.first));
+    flat.push_back(static_cast<double>(key.second));
+    vec(cm.relP);
+    flat.insert(flat.end(), {cm.relQ.w(), cm.relQ.x(), cm.relQ.y(), cm.relQ.z()});
+    flat.push_back(cm.maxOverlap);
+    flat.push_back(static_cast<double>(cm.patches.size()));
+    for (std::size_t i = 0; i < cm.patches.size(); ++i) {
+      const contact::ContactPatchPoints& patch = cm.patches[i];
+      vec(patch.normal);
+      flat.push_back(static_cast<double>(patch.count));
+      for (int k = 0; k < patch.count; ++k) {
+        flat.push_back(static_cast<double>(patch.keys[k]));
+        vec(patch.points[k]);
+        vec(cm.pointsB[i][static_cast<std::size_t>(k)]);
+        vec(patch.normals[k]);
+        flat.push_back(patch.depths[k]);
+        flat.push_back(patch.areas[k]);
+      }
+    }
+  }
+  return flat;
+}
+
+void World::restoreManifoldCache(const std::vector<double>& flat) {
+  manifoldCache_.clear();
+  if (flat.empty()) {
+    return;
+  }
+  std::size_t at = 0;
+  const auto bad = [&](const char* what) {
+    core::failInput("checkpoint", "variable 'manifold_cache' is damaged ({} at entry {} of {}): restart from an "
+                                  "earlier checkpoint, or start the run again",
+                    what, at, flat.size());
+  };
+  const auto next = [&]() {
+    if (at >= flat.size()) bad("it ends early");
+    if (!std::isfinite(flat[at])) bad("a value that is not finite");
+    return flat[at++];
+  };
+  const auto count = [&](double limit) {
+    const double v = next();
+    if (!(v >= 0.0 && v <= limit && v == std::floor(v))) bad("a count out of range");
+    return static_cast<std::size_t>(v);
+  };
+  const auto vec = [&]() {
+    const double x = next(), y = next(), z = next();
+    return Vec3(x, y, z);
+  };
+  if (next() != kCacheTag) bad("an unknown layout");
+  const std::size_t pairs = count(static_cast<double>(flat.size()));
+  for (std::size_t j = 0; j < pairs; ++j) {
+    contact::BodyPair key;
+    key.first = static_cast<std::uint32_t>(count(4294967295.0));
+    key.second = static_cast<std::uint32_t>(count(4294967295.0));
+    if (key.first >= bodies_.size()) bad("a body that is not in this scene");
+    CachedManifold cm;
+    cm.relP = vec();
+    const double w = next(), x = next(), y = next(), z = next();
+    cm.relQ = Quat(w, x, y, z);
+    cm.maxOverlap = next();
+    const std::size_t patches = count(static_cast<double>(flat.size()));
+    cm.patches.resize(patches);
+    cm.pointsB.resize(patches);
+    for (std::size_t i = 0; i < patches; ++i) {
+      contact::ContactPatchPoints& patch = cm.patches[i];
+      patch.normal = vec();
+      patch.count = static_cast<int>(count(4.0));
+      for (int k = 0; k < patch.count; ++k) {
+        patch.keys[k] = static_cast<std::uint32_t>(count(4294967295.0));
+        patch.points[k] = vec();
+        cm.pointsB[i][static_cast<std::size_t>(k)] = vec();
+        patch.normals[k] = vec();
+        patch.depths[k] = next();
+        patch.areas[k] = next();
+      }
+    }
+    manifoldCache_.emplace(key, std::move(cm));
+  }
+  if (at != flat.size()) bad("entries left over");
+}
+
+} // namespace armour::simulation
