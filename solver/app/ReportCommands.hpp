@@ -13,6 +13,8 @@
 ///    after), the storm's Hs, Tm, Tp, and the design-formula predictions for the storm
 ///    (analysis/DesignFormulas.hpp) beside them;
 ///  - with utilities/report.py (python3, numpy, matplotlib): the PNGs and index.html.
+/// The numbers come from analysis/DamageReport.hpp; this file parses the options and writes them
+/// (JSON values through core/JsonWriter.hpp, shared with `armour storm-file info --json`).
 
 #include "app/CommandContext.hpp"
 

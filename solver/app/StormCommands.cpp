@@ -2,6 +2,7 @@
 #include "app/StormCommands.hpp"
 
 #include "core/Error.hpp"
+#include "core/JsonWriter.hpp"
 #include "core/Log.hpp"
 #include "storm/StormFile.hpp"
 #include "storm/StormSynth.hpp"
@@ -21,6 +22,8 @@ namespace armour::app {
 namespace {
 
 using namespace armour::storm;
+using core::jsonNumber;
+using core::jsonString;
 
 struct SynthOptions {
   std::string model;
@@ -224,36 +227,6 @@ void checkStorm(const std::string& path) {
                            path, t.size(), t.front(), t.back(), describeStep(s), h.nx(), h.nz(), h.dx(), h.dz(),
                            s.dataVoxels, h.variability.present ? "Weibull" : "none");
 }
-
-std::string jsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-    case '"':
-      out += "\\\"";
-      break;
-    case '\\':
-      out += "\\\\";
-      break;
-    case '\n':
-      out += "\\n";
-      break;
-    case '\t':
-      out += "\\t";
-      break;
-    default:
-      if (static_cast<unsigned char>(c) < 0x20) {
-        out += fmt::format("\\u{:04x}", static_cast<int>(c));
-      } else {
-        out += c;
-      }
-    }
-  }
-  return out + "\"";
-}
-
-/// A number for JSON: shortest round-trip form; null for a non-finite value.
-std::string jsonNumber(double value) { return std::isfinite(value) ? fmt::format("{}", value) : "null"; }
 
 void printInfoJson(const StormReader& reader, const StormSummary& s) {
   const StormHeader& h = reader.header();

@@ -5,6 +5,7 @@
 
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
+#include "core/JsonWriter.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -14,6 +15,8 @@
 namespace armour::placement {
 namespace {
 
+using core::jsonString;
+
 /// Shortest text that reads back to the same double.
 std::string num(double v) { return fmt::format("{}", v); }
 
@@ -22,15 +25,6 @@ YAML::Node flowList(std::initializer_list<double> values) {
   for (double v : values) list.push_back(num(v));
   list.SetStyle(YAML::EmitterStyle::Flow);
   return list;
-}
-
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
 }
 
 std::string jsonList(const std::vector<std::string>& names) {
