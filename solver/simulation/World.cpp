@@ -7,6 +7,7 @@
 //   WorldSleep.cpp     contact islands: sleeping and waking
 //   WorldEnergy.cpp    the energy guard rail
 //   WorldState.cpp     captureState / restoreState (checkpoints)
+//   WorldConstraint.cpp, WorldManifoldCache.cpp  the constraint solver's step and its manifold reuse
 //   WorldInternal.hpp  flag bits shared by these files
 #include "simulation/World.hpp"
 
