@@ -133,7 +133,13 @@ void World::restoreState(const WorldState& s) {
     std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     history_.emplace_back(pair, std::move(points));
   }
-  restoreManifoldCache(s.manifoldCache);
+  // The constraint solver's reused patches; a penalty run does not keep a cache it never reads
+  // (a pack placed with the constraint solver and stormed with the penalty solver).
+  if (settings_.solver == ContactSolverKind::Constraint) {
+    restoreManifoldCache(s.manifoldCache);
+  } else {
+    manifoldCache_.clear();
+  }
   forcesReady_ = s.forcesReady;
   boxesValid_ = false;
 }
