@@ -31,49 +31,22 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 struct ReportOptions {
-  std::string run;                 ///< the run's output folder
-  std::string scene;               ///< default: the scene named in bodies.nc's history
-  std::string storm;               ///< default: the scene's hydro storm file
-  std::string output;              ///< default: RUN_DIR/report
-  std::string prefix;              ///< units: movable bodies whose names start with it (default: the hydro bodies)
-  std::string axis = "nose";       ///< unit axis for P2
-  std::vector<double> voxel;       ///< (x, z) of the pressure history, in the storm file's coordinates (unit: m)
-  /// The storm file's (x, z) of the scene's origin; default: the scene's hydro.storm.offset when the
-  /// storm is the scene's, else (0, 0) (unit: m).
-  std::vector<double> stormOffset;
-  double gaugeX = kNaN;            ///< x of the eta gauge (unit: m); default the slope's toe
-  std::string stormWindow = "run"; ///< storm records in storm.csv: "run" (the replayed window) or "all"
-  double hs = kNaN;                ///< override of the storm's Hs (unit: m)
-  double tm = kNaN;                ///< override of the mean period (unit: s)
-  double tp = kNaN;                ///< override of the peak period (unit: s)
-  double cotAlpha = kNaN;          ///< override of the slope (unit: -)
-  double permeability = 0.4;       ///< van der Meer's P (unit: -)
-  double porosity = kNaN;          ///< armour layer porosity for S (unit: -); default the pack's
-  double displacedDn = 1.0;        ///< a unit moved by more than this is displaced, for Nod and S (unit: Dn)
-  bool breaking = false;           ///< Hudson's K_D for breaking waves
+  std::string run;    ///< the run's output folder
+  std::string scene;  ///< default: the scene named in bodies.nc's history
+  std::string storm;  ///< default: the scene's hydro storm file
+  std::string output; ///< default: RUN_DIR/report
   bool noPlots = false;
+  /// What the analysis reads (units, axis, storm voxel and gauge, design-formula overrides): the
+  /// options fill it directly.
+  analysis::DamageReportSettings analysis;
 };
 
 std::string csvNumber(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("NaN"); }
 
-/// The analysis' settings from the options.
-analysis::DamageReportSettings settingsOf(const ReportOptions& o) {
-  analysis::DamageReportSettings s;
-  s.unitPrefix = o.prefix;
-  s.axis = o.axis;
+/// The analysis' settings with the storm file the options name (a path, given as text).
+analysis::DamageReportSettings settingsWithStorm(const ReportOptions& o) {
+  analysis::DamageReportSettings s = o.analysis;
   s.stormFile = o.storm;
-  s.storm.voxel = o.voxel;
-  s.storm.stormOffset = o.stormOffset;
-  s.storm.gaugeX = o.gaugeX;
-  s.storm.window = o.stormWindow;
-  s.hs = o.hs;
-  s.tm = o.tm;
-  s.tp = o.tp;
-  s.cotAlpha = o.cotAlpha;
-  s.permeability = o.permeability;
-  s.porosity = o.porosity;
-  s.displacedDn = o.displacedDn;
-  s.breaking = o.breaking;
   return s;
 }
 
@@ -239,14 +212,15 @@ void report(const ReportOptions& o) {
   if (!fs::is_directory(runDir))
     core::failInput(o.run, "not a folder; give the output folder of `armour run` (the scene's output.folder, e.g. "
                            "wave-slope-out)");
-  if (!(o.displacedDn > 0.0)) core::failInput("--displaced-dn", "{}: must be positive (unit: Dn)", o.displacedDn);
-  if (o.stormWindow != "run" && o.stormWindow != "all")
-    core::failInput("--storm-window", "'{}': give run or all", o.stormWindow);
+  if (!(o.analysis.displacedDn > 0.0))
+    core::failInput("--displaced-dn", "{}: must be positive (unit: Dn)", o.analysis.displacedDn);
+  if (o.analysis.storm.window != "run" && o.analysis.storm.window != "all")
+    core::failInput("--storm-window", "'{}': give run or all", o.analysis.storm.window);
   const io::BodySeriesReader series(runDir / "bodies.nc");
   const fs::path scenePath = o.scene.empty() ? io::sceneFileOfRun(series, runDir) : fs::path(o.scene);
   const io::Scene scene = io::sceneOfRun(scenePath, series);
   const analysis::DamageReport r =
-      analysis::damageReport(scene, scenePath, series, settingsOf(o), packMeasurer(scene));
+      analysis::damageReport(scene, scenePath, series, settingsWithStorm(o), packMeasurer(scene));
   if (!r.packAfter) std::cout << fmt::format("P2 and porosity not computed: {}\n", r.packNote);
 
   const fs::path folder = o.output.empty() ? runDir / "report" : fs::absolute(o.output);
@@ -277,31 +251,31 @@ void addReportCommands(CLI::App& app, GlobalOptions& /*global*/) {
                   "storm settings");
   cmd->add_option("--storm", o->storm, "storm file (default: the scene's hydro storm file)");
   cmd->add_option("--output", o->output, "report folder (default: RUN_DIR/report)");
-  cmd->add_option("--units", o->prefix,
+  cmd->add_option("--units", o->analysis.unitPrefix,
                   "units are the movable bodies whose names start with this (default: the "
                   "hydro bodies)");
-  cmd->add_option("--axis", o->axis, "unit axis for P2")->capture_default_str();
-  cmd->add_option("--voxel", o->voxel,
+  cmd->add_option("--axis", o->analysis.axis, "unit axis for P2")->capture_default_str();
+  cmd->add_option("--voxel", o->analysis.storm.voxel,
                   "X Z: the storm voxel whose pressure history to show, in the storm file's coordinates (m; "
                   "default: a submerged voxel with data near the units)")
       ->expected(2);
-  cmd->add_option("--gauge", o->gaugeX,
+  cmd->add_option("--gauge", o->analysis.storm.gaugeX,
                   "x of the eta gauge for Hs, Tm, Tp, in the storm file's coordinates (m; default: the slope's toe)");
-  cmd->add_option("--storm-offset", o->stormOffset,
+  cmd->add_option("--storm-offset", o->analysis.storm.stormOffset,
                   "X Z: the storm file's (x, z) of the scene's origin (m; default: the scene's hydro.storm.offset, "
                   "as given to armour storm with --set)")
       ->expected(2);
-  cmd->add_option("--storm-window", o->stormWindow, "storm records in storm.csv: run (the replayed ones) or all")
+  cmd->add_option("--storm-window", o->analysis.storm.window, "storm records in storm.csv: run (the replayed ones) or all")
       ->capture_default_str();
-  cmd->add_option("--hs", o->hs, "Hs for the design formulas instead of the gauge's (m)");
-  cmd->add_option("--tm", o->tm, "mean period instead of the gauge's (s)");
-  cmd->add_option("--tp", o->tp, "peak period instead of the gauge's (s)");
-  cmd->add_option("--cot", o->cotAlpha, "slope cot alpha (default: the scene's slope)");
-  cmd->add_option("--permeability", o->permeability, "van der Meer's notional permeability P")->capture_default_str();
-  cmd->add_option("--porosity", o->porosity, "armour layer porosity for S = Nod / (1 - p) (default: the pack's)");
-  cmd->add_option("--displaced-dn", o->displacedDn, "a unit moved more than this many Dn counts as displaced")
+  cmd->add_option("--hs", o->analysis.hs, "Hs for the design formulas instead of the gauge's (m)");
+  cmd->add_option("--tm", o->analysis.tm, "mean period instead of the gauge's (s)");
+  cmd->add_option("--tp", o->analysis.tp, "peak period instead of the gauge's (s)");
+  cmd->add_option("--cot", o->analysis.cotAlpha, "slope cot alpha (default: the scene's slope)");
+  cmd->add_option("--permeability", o->analysis.permeability, "van der Meer's notional permeability P")->capture_default_str();
+  cmd->add_option("--porosity", o->analysis.porosity, "armour layer porosity for S = Nod / (1 - p) (default: the pack's)");
+  cmd->add_option("--displaced-dn", o->analysis.displacedDn, "a unit moved more than this many Dn counts as displaced")
       ->capture_default_str();
-  cmd->add_flag("--breaking", o->breaking, "use Hudson's K_D for breaking waves");
+  cmd->add_flag("--breaking", o->analysis.breaking, "use Hudson's K_D for breaking waves");
   cmd->add_flag("--no-plots", o->noPlots, "write the tables only (no utilities/report.py)");
   cmd->callback([o] { report(*o); });
 }
