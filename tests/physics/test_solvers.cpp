@@ -401,6 +401,34 @@ struct Pile : CubeScene {
   [[nodiscard]] std::vector<double> state() const { return stateOf(world); }
 };
 
+/// The pile run 200 steps straight, and run 100, written to a checkpoint file, read into a fresh
+/// pile and run 100 more (the restart tests).
+struct RestartCheck {
+  std::vector<double> straight, restarted;
+  std::size_t reusedAtCheckpoint = 0;
+  bool cacheSaved = false;
+};
+RestartCheck restartThroughAFile(bool anchors) {
+  RestartCheck r;
+  Pile straight(false, anchors);
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  r.reusedAtCheckpoint = straight.world.lastStep().reusedPairs;
+  Checkpoint c;
+  c.state = straight.world.captureState();
+  r.cacheSaved = !c.state.manifoldCache.empty();
+  const auto path = std::filesystem::temp_directory_path() /
+                    (anchors ? "armour-test-constraint-anchors-restart.nc" : "armour-test-constraint-restart.nc");
+  writeCheckpoint(path, c);
+  for (int n = 0; n < 100; ++n) straight.world.step();
+  Pile restarted(false, anchors);
+  restarted.world.restoreState(readCheckpoint(path).state);
+  std::filesystem::remove(path);
+  for (int n = 0; n < 100; ++n) restarted.world.step();
+  r.straight = straight.state();
+  r.restarted = restarted.state();
+  return r;
+}
+
 std::vector<double> runPile(int threads) {
   omp_set_num_threads(threads);
   Pile p;
@@ -423,23 +451,12 @@ TEST(ConstraintSolver, OneAndTwoThreadsGiveBitIdenticalStates) {
 TEST(ConstraintSolver, RestartFromACheckpointIsBitIdentical) {
   // 100 steps, a checkpoint file, 100 more; against a fresh pile restored from the file and run
   // 100 steps: the same bits (the warm-start impulses are in the checkpoint).
-  Pile straight;
-  for (int n = 0; n < 100; ++n) straight.world.step();
   // Manifold reuse is on by default: its cache must be in the checkpoint for the bits to agree.
-  ASSERT_GT(straight.world.lastStep().reusedPairs, 0u) << "the test must restart with reused manifolds";
-  Checkpoint c;
-  c.state = straight.world.captureState();
-  ASSERT_FALSE(c.state.manifoldCache.empty());
-  const auto path = std::filesystem::temp_directory_path() / "armour-test-constraint-restart.nc";
-  writeCheckpoint(path, c);
-  for (int n = 0; n < 100; ++n) straight.world.step();
-  Pile restarted;
-  restarted.world.restoreState(readCheckpoint(path).state);
-  std::filesystem::remove(path);
-  for (int n = 0; n < 100; ++n) restarted.world.step();
-  const auto a = straight.state(), b = restarted.state();
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "state entry " << i;
+  const RestartCheck r = restartThroughAFile(false);
+  ASSERT_GT(r.reusedAtCheckpoint, 0u) << "the test must restart with reused manifolds";
+  ASSERT_TRUE(r.cacheSaved);
+  ASSERT_EQ(r.straight.size(), r.restarted.size());
+  for (std::size_t i = 0; i < r.straight.size(); ++i) EXPECT_EQ(r.straight[i], r.restarted[i]) << "state entry " << i;
 }
 
 TEST(ConstraintSolver, FrictionAnchorsHoldBelowTheFrictionAngleSlideAboveItAndRestartBitIdentical) {
@@ -460,20 +477,10 @@ TEST(ConstraintSolver, FrictionAnchorsHoldBelowTheFrictionAngleSlideAboveItAndRe
   const double expected = kG * (std::sin(above) - 0.4 * std::cos(above));
   EXPECT_NEAR(v1 - v0, expected, 0.02 * expected);
 
-  Pile straight(false, true);
-  for (int n = 0; n < 100; ++n) straight.world.step();
-  Checkpoint c;
-  c.state = straight.world.captureState();
-  const auto path = std::filesystem::temp_directory_path() / "armour-test-constraint-anchors-restart.nc";
-  writeCheckpoint(path, c);
-  for (int n = 0; n < 100; ++n) straight.world.step();
-  Pile restarted(false, true);
-  restarted.world.restoreState(readCheckpoint(path).state);
-  std::filesystem::remove(path);
-  for (int n = 0; n < 100; ++n) restarted.world.step();
-  const auto a = straight.state(), b = restarted.state();
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "state entry " << i;
+  const RestartCheck r = restartThroughAFile(true);
+  ASSERT_EQ(r.straight.size(), r.restarted.size());
+  for (std::size_t i = 0; i < r.straight.size(); ++i) EXPECT_EQ(r.straight[i], r.restarted[i]) << "state entry " << i;
+  const auto& a = r.straight;
   Pile without;
   for (int n = 0; n < 200; ++n) without.world.step();
   EXPECT_NE(without.state(), a) << "the anchors must act on the pile (else this test checks nothing)";
