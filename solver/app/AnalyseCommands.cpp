@@ -43,6 +43,7 @@ void analyse(const AnalyseOptions& o) {
   AnalyseSettings settings;
   settings.unitPrefix = o.prefix;
   settings.axis = o.axis;
+  settings.stateName = o.state;
   std::optional<PoseMap> state, reference;
   if (!o.state.empty()) state = readPoses(o.state);
   if (!o.reference.empty()) reference = readPoses(o.reference);

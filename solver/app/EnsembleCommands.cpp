@@ -217,6 +217,7 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
   AnalyseSettings settings;
   settings.unitPrefix = unitPrefix;
   settings.axis = o.axis;
+  settings.stateName = (m.run / "final_state.csv").string();
   const PackReport report = analysePack(scene, settings, &after, &before);
   writePackReport(report, m.run / "analysis");
   const analysis::PackDisplacement& d = *report.displacement;

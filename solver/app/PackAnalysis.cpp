@@ -127,8 +127,9 @@ PoseMap readPoses(const std::filesystem::path& path) {
 
 PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, const PoseMap* state,
                        const PoseMap* reference) {
-  io::Scene scene = input;
-  scene.placement = {};
+  io::Scene declared = input;
+  declared.placement = {};
+  io::Scene scene = declared;
   if (state != nullptr) {
     for (io::Body& b : scene.bodies) {
       const auto it = state->find(b.name);
@@ -165,15 +166,31 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     positions.push_back(b.position);
     orientations.push_back(b.orientation);
   }
-  // The World at these poses: sizes and contacts.
-  simulation::BuiltScene built = simulation::buildWorld(scene);
+  // The World of the scene's own poses (its static domain), its bodies moved to these: sizes and
+  // contacts.
+  simulation::BuiltScene built = simulation::buildWorld(declared);
   simulation::World& world = *built.world;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const auto b = built.bodyIndexOfSceneBody[i];
+    world.bodies().setPosition(b, scene.bodies[i].position);
+    // A scene's orientation is the shape's natural frame; the World's body frame is its principal one.
+    world.bodies().setOrientation(b, scene.bodies[i].orientation.normalized() * world.bodyNaturalToBody(b).conjugate());
+  }
+  world.invalidateBoxes();
   for (std::size_t i : units) {
     const auto b = built.bodyIndexOfSceneBody[i];
     dn.push_back(std::cbrt(world.shape(world.bodyShape(b)).unitMass.volume) * world.bodyScale(b));
+    if (built.domain.beyondEdge(scene.bodies[i].position)) ++r.unitsOffDomain;
   }
   world.setRecordContacts(true);
-  world.evaluateContacts();
+  try {
+    world.evaluateContacts();
+  } catch (const simulation::SimulationError& e) {
+    core::failInput(state != nullptr && !settings.stateName.empty() ? settings.stateName : scene.sourceName,
+                    "the contacts at these poses cannot be evaluated: {}. The poses put bodies deep inside each "
+                    "other or inside the static geometry of {}: give the state of a run of this scene",
+                    e.what(), scene.sourceName);
+  }
   const std::size_t n = world.bodies().size();
   std::vector<analysis::BodyRole> roles(n + 1, analysis::BodyRole::support); // n: the static geometry
   for (std::size_t i : units) roles[built.bodyIndexOfSceneBody[i]] = analysis::BodyRole::unit;
@@ -302,6 +319,10 @@ std::string packText(const PackReport& r) {
   t += fmt::format("underlayer          {} units touch it ({:.3f}); {} stacked ({:.3f}: no support touched, centroid "
                    "> 1 Dn above the underlayer)\n",
                    r.touchingUnderlayer, r.touchingUnderlayer / count, r.stackedUnits, r.stackedUnits / count);
+  if (r.unitsOffDomain > 0)
+    t += fmt::format("off the model       {} units beyond the static domain: they fell off the edge of the scene's "
+                     "unbounded items (a wall closes it)\n",
+                     r.unitsOffDomain);
   if (r.displacement) {
     const auto& d = *r.displacement;
     t += fmt::format("displacement        delta_rms {:.4g} m ({:.4g} Dn), horizontal {:.4g} m; mean {:.4g} Dn, max {:.4g} "
@@ -352,8 +373,8 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
     o << fmt::format("  \"underlayer_mean_top_m\": {},\n  \"underlayer_mean_top_all_stones_m\": {},\n"
                      "  \"underlayer_surface_stones\": {},\n",
                      json(r.underlayerTop), json(r.underlayerTopAllStones), r.surfaceStones);
-    o << fmt::format("  \"units_touching_underlayer\": {},\n  \"stacked_units\": {}", r.touchingUnderlayer,
-                     r.stackedUnits);
+    o << fmt::format("  \"units_touching_underlayer\": {},\n  \"stacked_units\": {},\n  \"units_off_domain\": {}",
+                     r.touchingUnderlayer, r.stackedUnits, r.unitsOffDomain);
     if (r.displacement) {
       const auto& d = *r.displacement;
       std::vector<std::string> counts;

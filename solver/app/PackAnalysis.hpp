@@ -42,6 +42,7 @@ PoseMap posesOf(const io::Scene& scene);
 struct AnalyseSettings {
   std::string unitPrefix;          ///< units are the movable bodies whose name starts with it (empty: all)
   std::string axis = "nose";       ///< the unit axis for orientations and P2 (analysis::unitAxesOf)
+  std::string stateName;           ///< where the state's poses came from, for messages (e.g. its file)
   analysis::DisplacementSettings displacement;
 };
 
@@ -83,13 +84,20 @@ struct PackReport {
   std::size_t supportStones = 0;      ///< supports (unit: -)
   std::size_t touchingUnderlayer = 0; ///< units that touch a support: rocks, the slope, the toe (unit: -)
   std::size_t stackedUnits = 0;       ///< units with UnitRow::stacked (unit: -)
+  /// Units whose centroid lies past an edge of the static domain (StaticDomain::beyondEdge): they
+  /// fell off the cut end of the scene's unbounded items (a slope's crest, a height field's plane).
+  std::size_t unitsOffDomain = 0;
   std::optional<analysis::PackDisplacement> displacement;
   std::string axis;
   double rockingAngle = 0.0;        ///< the rocking threshold used (unit: rad)
 };
 
 /// Analyse `scene` at its bodies' poses (optionally overridden by `state`), with displacements
-/// from `reference` when given.
+/// from `reference` when given. The World is built from the scene's own poses and its bodies then
+/// moved to the state's, so that the static domain (where the unbounded items are cut) is the one
+/// a run of the scene had: a unit that fell off its edge is not put inside a longer crest.
+/// Throws core::InputError when the contacts at the state cannot be evaluated (bodies deep inside
+/// each other or the static geometry), naming the state (AnalyseSettings::stateName).
 PackReport analysePack(const io::Scene& scene, const AnalyseSettings& settings, const PoseMap* state = nullptr,
                        const PoseMap* reference = nullptr);
 

@@ -12,6 +12,7 @@
 #include "storm/StormFile.hpp"
 #include "placement/Placer.hpp"
 #include "simulation/CheckpointFile.hpp"
+#include "simulation/DomainWatch.hpp"
 #include "simulation/Interpenetration.hpp"
 #include "simulation/RunOutputs.hpp"
 #include "simulation/SceneBuilder.hpp"
@@ -39,6 +40,8 @@ using Clock = std::chrono::steady_clock;
 /// Wall-clock time between progress lines (unit: s): often enough to see a run is alive, rarely
 /// enough that a long run's log stays readable.
 constexpr double kProgressSeconds = 5.0;
+/// Bodies leaving the static domain are logged one by one up to this many, then counted.
+constexpr std::size_t kLoggedDomainExits = 10;
 
 
 // ---------------------------------------------------------------------------------------------
@@ -436,6 +439,12 @@ void runScene(const RunRequest& o) {
     return checkpointEvery > 0.0 ? static_cast<long>(std::floor(t / checkpointEvery + 1e-9)) + 1 : LONG_MAX;
   };
   long nextCheckpoint = nextCheckpointIndex(world.time());
+  simulation::DomainWatch domainWatch(built.domain, world);
+  if (domainWatch.outsideCount() > 0)
+    log->warn("{} bodies are outside the static domain at the start (t = {} s): they left it before, or the scene "
+              "puts them beyond its unbounded items' edges",
+              domainWatch.outsideCount(), world.time());
+  std::size_t domainExits = 0;
   bool stopped = false;
   StopSignals signals;
   try {
@@ -452,6 +461,8 @@ void runScene(const RunRequest& o) {
       maxOverlap = std::max(maxOverlap, world.lastStep().maxOverlap);
       awakeBodySteps += static_cast<double>(world.bodies().awakeBodies().size());
       movableBodySteps += static_cast<double>(movable);
+      for (const simulation::DomainExit& e : domainWatch.update(world))
+        if (++domainExits <= kLoggedDomainExits) log->warn("{}", domainWatch.describe(world, e));
       if (signals.received() != 0) {
         stopped = true;
         break;
@@ -527,6 +538,11 @@ void runScene(const RunRequest& o) {
               "body-steps (on average {:.1f} awake)",
               movable, world.bodies().size(), world.bodies().size() - movable,
               100.0 * (1.0 - awakeBodySteps / movableBodySteps), awakeBodySteps / static_cast<double>(steps));
+  if (domainExits > 0)
+    log->warn("{} bodies left the static domain in this run{} ({} outside it at the end): they fell off the edge of "
+              "the scene's unbounded items",
+              domainExits, domainExits > kLoggedDomainExits ? fmt::format(" (the first {} logged)", kLoggedDomainExits) : "",
+              domainWatch.outsideCount());
   for (const auto& stage : world.loadStages())
     if (const std::string s = stage->summary(); !s.empty()) log->info("{}", s);
   // The step's stages (World::profile): where the wall time of the stepping went.

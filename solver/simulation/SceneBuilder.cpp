@@ -255,6 +255,8 @@ StaticDomain staticDomain(const io::Scene& scene, const std::vector<double>& bod
   // "A few cell sizes" and several body sizes below the surface: far beyond any overlap the guard
   // rail lets through (a quarter of Dn by default).
   d.depth = std::max({1.0, 4.0 * largest, 2.0 * cell});
+  if (!scene.statics.slopes.empty()) d.edge[1] = d.edge[2] = d.edge[3] = true;
+  if (!scene.statics.heightFields.empty()) d.edge[0] = d.edge[1] = d.edge[2] = d.edge[3] = true;
   return d;
 }
 

@@ -56,6 +56,18 @@ struct StaticDomain {
   /// How far convex pieces reach below the lowest point of their surface (unit: m). Far deeper
   /// than any contact overlap (a fraction of Dn), so a body never feels a piece's bottom face.
   double depth = 1.0;
+  /// The sides where a cut item ends above what lies beyond (an edge to fall off): x min, x max,
+  /// y min, y max. A slope's crest onshore and its ends along y; every side of a height field's
+  /// plane. Not a slope's offshore side: its seabed half-space continues there at the toe's foot.
+  bool edge[4] = {false, false, false, false};
+
+  /// A centroid past one of the edges (or NaN): off the scene's unbounded items.
+  [[nodiscard]] bool beyondEdge(const Vec3& x) const {
+    const bool inside[4] = {x.x() >= xMin, x.x() <= xMax, x.y() >= yMin, x.y() <= yMax};
+    for (int k = 0; k < 4; ++k)
+      if (edge[k] && !inside[k]) return true;
+    return false;
+  }
 };
 
 /// The World built from a scene, with the maps from scene items to World ids.

@@ -143,3 +143,45 @@ static:
   ASSERT_TRUE(r.thickness.has_value());
   EXPECT_NEAR(r.thickness->thickness, (0.999 + 0.999 + 1.998 + 1.497) / 4.0 - 0.499, 1e-4);
 }
+
+// A unit that fell off the edge of a slope's crest (beyond the static domain, on the seabed, as
+// seed 003's sweep at 591 kN left one 40 m onshore) is analysed in the domain of the scene's own
+// poses, where it lies on the seabed plane: counted off the model, not refused as lying inside a
+// crest stretched to reach it. A state that puts a unit deep inside the slope is refused as input,
+// naming the state.
+TEST(PackAnalysis, AUnitOffTheCrestEdgeIsOffTheModelAndAUnitInTheSlopeIsRefused) {
+  const std::string yaml = R"(
+duration: 1
+materials:
+  concrete: {density: 2400, friction: 0.7, restitution: 0.1}
+bodies:
+  - {name: c0, shape: cube, dn: 1, material: concrete, position: [1.776393, 0, 1.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c1, shape: cube, dn: 1, material: concrete, position: [3.776393, 0, 2.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
+static:
+  - {type: slope, name: bed, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 3}
+)";
+  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "crest-edge.yaml");
+  app::PoseMap state = app::posesOf(scene);
+  // c1 at rest on the seabed (z = 0) 40 m onshore of the crest edge (x = 6 m).
+  state["c1"].position = Eigen::Vector3d(46.0, 0.0, 0.5 - 1e-6);
+  state["c1"].orientation = Eigen::Quaterniond::Identity();
+  app::AnalyseSettings settings;
+  settings.stateName = "final_state.csv";
+  const app::PackReport r = app::analysePack(scene, settings, &state);
+  EXPECT_EQ(r.unitsOffDomain, 1u);
+  ASSERT_EQ(r.units.size(), 2u);
+  EXPECT_EQ(r.units[1].supportNeighbours, 1u); // the seabed
+  EXPECT_NE(app::packText(r).find("off the model       1 units"), std::string::npos) << app::packText(r);
+  // The unit 0.6 m (centroid) into the face: its samples 1 m deep, more than the guard allows.
+  state = app::posesOf(scene);
+  state["c1"].position.z() -= 0.6 / std::sqrt(1.25) * 1.0;
+  state["c1"].position.x() += 0.6 * 0.5 / std::sqrt(1.25);
+  try {
+    (void)app::analysePack(scene, settings, &state);
+    FAIL() << "a unit deep inside the slope was analysed";
+  } catch (const core::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("final_state.csv"), std::string::npos) << what;
+    EXPECT_NE(what.find("cannot be evaluated"), std::string::npos) << what;
+  }
+}
