@@ -481,10 +481,11 @@ void runScene(const RunRequest& o) {
         const double wall = wallSince(start);
         const double rate = static_cast<double>(world.stepCount() - firstStep) / wall;
         const double remaining = (end - world.time()) / dt / rate;
-        log->info("t = {:.4f} s of {} s ({:.1f} %), {} steps, {:.0f} steps/s, ETA {:.0f} s; contacts {}, max overlap "
-                  "{:.3g} m",
+        const simulation::StepStatistics& last = world.lastStep();
+        log->info("t = {:.4f} s of {} s ({:.1f} %), {} steps, {:.0f} steps/s, ETA {:.0f} s; contacts {}, candidate "
+                  "pairs {} ({} manifolds reused), max overlap {:.3g} m",
                   world.time(), end, 100.0 * world.time() / end, world.stepCount(), rate, remaining,
-                  world.lastStep().contactPoints, maxOverlap);
+                  last.contactPoints, last.candidatePairs, last.reusedPairs, maxOverlap);
       }
     }
   } catch (const simulation::SimulationError& e) {

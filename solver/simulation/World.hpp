@@ -386,14 +386,23 @@ private:
     Vec3 relP = Vec3::Zero();
     Quat relQ = Quat::Identity();
     double maxOverlap = 0.0;
+    double margin = 0.0;                              ///< PairManifold::margin of its narrow phase (unit: m)
     std::vector<contact::ContactPatchPoints> patches; ///< points in A's frame, normals in B's
     std::vector<std::array<Vec3, 4>> pointsB;         ///< the same points in B's frame
+    std::uint64_t stamp = 0;                          ///< the step that last used it (not saved)
   };
-  std::map<contact::BodyPair, CachedManifold> manifoldCache_;
+  /// By pairKey(key): a hash map, as the lookups of every candidate pair at every step are its
+  /// cost; saved sorted by key, so checkpoints do not depend on its order.
+  std::unordered_map<std::uint64_t, CachedManifold> manifoldCache_;
+  [[nodiscard]] static std::uint64_t pairKey(const contact::BodyPair& key) {
+    return (std::uint64_t{key.first} << 32) | key.second;
+  }
+  std::uint64_t manifoldCacheStamp_ = 0; ///< counts cacheManifolds calls (CachedManifold::stamp)
   /// A's pose in B's frame (B static: the world).
   void relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const;
   /// m.key's cached patches moved to the current poses, if the pair has moved less than the reuse
-  /// distance since they were found and `travel` (m, what it may close in this step) is below it too.
+  /// distance r since they were found and no sample left out then can touch in this step: `travel`
+  /// (m, what the pair may close in it) plus r stays below the margin they were found with.
   bool reuseManifold(PairManifold& m, double travel) const;
   /// The cache after a narrow phase: reused pairs keep their entries, the others' are made anew.
   void cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused);

@@ -103,13 +103,13 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
       const detail::StaticTarget target =
           detail::staticTarget(planes_, convex_, isPlane, m.key.second & ~kStaticBits, boxes_[a]);
       const contact::HalfSpaces solid{target.normals, target.offsets(), target.region};
-      const double margin = std::max(cs.speculativeMargin * bodyDn(a), travel(a, a));
-      m.maxOverlap = contact::samplesInHalfSpaces(contactShape(a), contactPose(a), solid, margin, points);
+      m.margin = std::max(cs.speculativeMargin * bodyDn(a), travel(a, a));
+      m.maxOverlap = contact::samplesInHalfSpaces(contactShape(a), contactPose(a), solid, m.margin, points);
     } else {
       const BodyId b = m.key.second;
-      const double margin = std::max(cs.speculativeMargin * std::min(bodyDn(a), bodyDn(b)), travel(a, b));
+      m.margin = std::max(cs.speculativeMargin * std::min(bodyDn(a), bodyDn(b)), travel(a, b));
       m.maxOverlap = contact::samplesInLevelSets(contactShape(a), contactPose(a), contactShape(b), contactPose(b),
-                                                 margin, points, stepLists_[w], sampleListSlack(a, b));
+                                                 m.margin, points, stepLists_[w], sampleListSlack(a, b));
     }
     // The keys this pair's patches held in the previous step (its history, sorted by key).
     std::vector<std::uint32_t> kept;

@@ -78,6 +78,9 @@ struct World::PairManifold {
   contact::BodyPair key;
   std::vector<contact::ContactPatchPoints> patches;
   double maxOverlap = 0.0; ///< deepest sample inside, for the guard rails (unit: m)
+  /// The speculative margin of its full narrow phase: every sample within it of the other body was
+  /// found (unit: m).
+  double margin = 0.0;
 };
 
 } // namespace armour::simulation

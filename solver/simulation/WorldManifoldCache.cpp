@@ -18,8 +18,10 @@ using detail::kStaticBits;
 
 namespace {
 
-/// Layout version of the flattened cache (saveManifoldCache).
-constexpr double kCacheTag = 1.0;
+/// Layout version of the flattened cache (saveManifoldCache): 2 adds each entry's margin. A
+/// layout-1 cache (session 18) is read with margin = 2 r, its reuse rule then (travel < r).
+constexpr double kCacheTag = 2.0;
+constexpr double kCacheTagWithoutMargin = 1.0;
 
 } // namespace
 
@@ -36,7 +38,7 @@ void World::relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const {
 }
 
 bool World::reuseManifold(PairManifold& m, double travel) const {
-  const auto it = manifoldCache_.find(m.key);
+  const auto it = manifoldCache_.find(pairKey(m.key));
   if (it == manifoldCache_.end()) {
     return false;
   }
@@ -46,9 +48,13 @@ bool World::reuseManifold(PairManifold& m, double travel) const {
   Vec3 p;
   Quat q;
   relativePose(m.key, p, q);
-  // Turned by angle: a point half a Dn from the centre moves by angle Dn / 2.
-  const double angle = 2.0 * std::acos(std::min(1.0, std::abs(q.dot(cm.relQ))));
-  if (!((p - cm.relP).norm() < limit) || !(angle * 0.5 * bodyDn(a) < limit) || !(travel < limit)) {
+  // Turned by angle: a point half a Dn from the centre moves by angle Dn / 2. A sample that was
+  // outside the margin then is still more than margin - r away, so it cannot touch in this step
+  // while travel + r < margin.
+  // angle * Dn / 2 < r  <=>  |q . q_then| = cos(angle / 2) > cos(r / Dn), without an acos.
+  const double turnedCos = std::cos(settings_.constraint.reuseDistance);
+  if (!((p - cm.relP).squaredNorm() < limit * limit) || !(std::abs(q.dot(cm.relQ)) > turnedCos) ||
+      !(travel + limit < cm.margin)) {
     return false;
   }
   const bool isStatic = (m.key.second & kStaticBits) != 0;
@@ -76,14 +82,18 @@ bool World::reuseManifold(PairManifold& m, double travel) const {
 }
 
 void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused) {
-  std::map<contact::BodyPair, CachedManifold> next;
+  // In place: a reused entry keeps the pose of its full narrow phase, a new narrow phase
+  // overwrites its pair's entry (keeping its vectors' storage), and the entries of pairs that are
+  // no longer candidates go.
+  const std::uint64_t stamp = ++manifoldCacheStamp_; // never 0, the stamp of a restored entry
   for (std::size_t w = 0; w < manifolds.size(); ++w) {
     const PairManifold& m = manifolds[w];
     if (reused[w] != 0) {
-      next.emplace(m.key, std::move(manifoldCache_.at(m.key))); // the pose of its full narrow phase
+      manifoldCache_.at(pairKey(m.key)).stamp = stamp;
       continue;
     }
-    CachedManifold cm;
+    CachedManifold& cm = manifoldCache_[pairKey(m.key)];
+    cm.stamp = stamp;
     relativePose(m.key, cm.relP, cm.relQ);
     const bool isStatic = (m.key.second & kStaticBits) != 0;
     const Vec3 pb = isStatic ? Vec3::Zero() : bodies_.position(m.key.second);
@@ -91,6 +101,7 @@ void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std
     const Vec3& xa = bodies_.position(m.key.first);
     const Quat& qa = bodies_.orientation(m.key.first);
     cm.maxOverlap = m.maxOverlap;
+    cm.margin = m.margin;
     cm.patches = m.patches;
     cm.pointsB.resize(m.patches.size());
     for (std::size_t i = 0; i < cm.patches.size(); ++i) {
@@ -102,9 +113,8 @@ void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std
         patch.normals[k] = qb.conjugate() * patch.normals[k];
       }
     }
-    next.emplace(m.key, std::move(cm));
   }
-  manifoldCache_ = std::move(next);
+  std::erase_if(manifoldCache_, [stamp](const auto& entry) { return entry.second.stamp != stamp; });
 }
 
 std::vector<double> World::saveManifoldCache() const {
@@ -115,12 +125,18 @@ std::vector<double> World::saveManifoldCache() const {
   flat.push_back(kCacheTag);
   flat.push_back(static_cast<double>(manifoldCache_.size()));
   const auto vec = [&](const Vec3& v) { flat.insert(flat.end(), {v.x(), v.y(), v.z()}); };
-  for (const auto& [key, cm] : manifoldCache_) {
-    flat.push_back(static_cast<double>(key.first));
-    flat.push_back(static_cast<double>(key.second));
+  std::vector<std::uint64_t> keys;
+  keys.reserve(manifoldCache_.size());
+  for (const auto& entry : manifoldCache_) keys.push_back(entry.first);
+  std::sort(keys.begin(), keys.end());
+  for (const std::uint64_t key : keys) {
+    const CachedManifold& cm = manifoldCache_.at(key);
+    flat.push_back(static_cast<double>(key >> 32));
+    flat.push_back(static_cast<double>(key & 0xffffffffu));
     vec(cm.relP);
     flat.insert(flat.end(), {cm.relQ.w(), cm.relQ.x(), cm.relQ.y(), cm.relQ.z()});
     flat.push_back(cm.maxOverlap);
+    flat.push_back(cm.margin);
     flat.push_back(static_cast<double>(cm.patches.size()));
     for (std::size_t i = 0; i < cm.patches.size(); ++i) {
       const contact::ContactPatchPoints& patch = cm.patches[i];
@@ -164,7 +180,8 @@ void World::restoreManifoldCache(const std::vector<double>& flat) {
     const double x = next(), y = next(), z = next();
     return Vec3(x, y, z);
   };
-  if (next() != kCacheTag) bad("an unknown layout");
+  const double tag = next();
+  if (tag != kCacheTag && tag != kCacheTagWithoutMargin) bad("an unknown layout");
   const std::size_t pairs = count(static_cast<double>(flat.size()));
   for (std::size_t j = 0; j < pairs; ++j) {
     contact::BodyPair key;
@@ -176,6 +193,7 @@ void World::restoreManifoldCache(const std::vector<double>& flat) {
     const double w = next(), x = next(), y = next(), z = next();
     cm.relQ = Quat(w, x, y, z);
     cm.maxOverlap = next();
+    cm.margin = tag == kCacheTag ? next() : 2.0 * settings_.constraint.reuseDistance * bodyDn(key.first);
     const std::size_t patches = count(static_cast<double>(flat.size()));
     cm.patches.resize(patches);
     cm.pointsB.resize(patches);
@@ -192,7 +210,7 @@ void World::restoreManifoldCache(const std::vector<double>& flat) {
         patch.areas[k] = next();
       }
     }
-    manifoldCache_.emplace(key, std::move(cm));
+    manifoldCache_.emplace(pairKey(key), std::move(cm));
   }
   if (at != flat.size()) bad("entries left over");
 }
