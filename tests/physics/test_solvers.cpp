@@ -520,6 +520,34 @@ TEST(ConstraintSolver, ManifoldReuseKeepsASettledPileStill) {
   EXPECT_LT(movedReusing, 1e-4) << "largest movement of a cube in 3 s at rest (m)";
 }
 
+TEST(ConstraintSolver, AUnitRestingUnderAHeavyLoadKeepsItsManifold) {
+  // Reuse by the margin (docs/theory.md, "Manifold reuse"): a pair keeps its patches while its
+  // step's travel bound plus r stays below the margin they were found with. A 1 m cube resting on
+  // the floor under 200 m/s^2 (ours: a storm's load on a unit, 20 g) has a travel bound of
+  // 1.1 dt (g dt) = 5.5 mm at 1/200 s, above r = 1 mm (session 18's rule, travel < r, never
+  // reused it) and far below the margin of 50 mm. At rest it keeps its patches at every step
+  // and stays where it is: no drift above 1e-7 m in 1 s, its overlap rho g Dn / E_p = 0.48 mm
+  // within 1 % (the penalty law's spring, which the constraint solver's points are).
+  WorldSettings settings = settingsFor(ContactSolverKind::Constraint);
+  settings.gravity = Vec3(0.0, 0.0, -200.0);
+  CubeScene s(concrete(0.1, 0.6), settings);
+  s.addFloor();
+  const BodyId b = s.addCube(Vec3(0, 0, 0.5));
+  s.world.advanceTo(1.0);
+  const Vec3 settled = s.world.bodies().position(b);
+  std::size_t reused = 0, steps = 0;
+  while (s.world.time() < 2.0 - 1e-9) {
+    s.world.step();
+    reused += s.world.lastStep().reusedPairs;
+    ++steps;
+    ASSERT_EQ(s.world.lastStep().candidatePairs, 1u);
+  }
+  EXPECT_EQ(reused, steps) << "the resting cube's one pair keeps its patches at every step";
+  EXPECT_LT((s.world.bodies().position(b) - settled).norm(), 1e-7);
+  const double overlap = 2400.0 * 200.0 * 1.0 / Material{}.penaltyModulus; // the defaults: 2400 kg/m^3, 1e9 Pa
+  EXPECT_NEAR(0.5 - settled.z(), overlap, 0.01 * overlap);
+}
+
 TEST(ConstraintSolver, ADamagedManifoldCacheIsRefusedByName) {
   Pile p;
   for (int n = 0; n < 50; ++n) p.world.step();
