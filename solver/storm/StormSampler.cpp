@@ -37,12 +37,8 @@ bool locate(const std::vector<double>& axis, double c, std::size_t& index, doubl
   return true;
 }
 
-bool makeStencil(const StormHeader& h, double x, double z, Stencil& s) {
-  std::size_t ix = 0, iz = 0;
-  double tx = 0.0, tz = 0.0;
-  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
-    return false;
-  }
+/// The stencil of the cell (ix, iz) at fractions (tx, tz) (from locate).
+bool stencilAt(const StormHeader& h, std::size_t ix, std::size_t iz, double tx, double tz, Stencil& s) {
   const std::size_t nx = h.nx();
   const std::size_t base = iz * nx + ix;
   const std::size_t voxels[4] = {base, base + 1, base + nx, base + nx + 1};
@@ -169,9 +165,19 @@ FlowSample StormSampler::sample(double x, double z) const { return interpolate(x
 FlowSample StormSampler::rate(double x, double z) const { return interpolate(x, z, true); }
 
 FlowSample StormSampler::interpolate(double x, double z, bool rate) const {
+  std::size_t ix = 0, iz = 0;
+  double tx = 0.0, tz = 0.0;
+  const StormHeader& h = reader_.header();
+  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
+    return {};
+  }
+  return interpolateCell(ix, iz, tx, tz, rate);
+}
+
+FlowSample StormSampler::interpolateCell(std::size_t ix, std::size_t iz, double tx, double tz, bool rate) const {
   FlowSample out;
   Stencil s;
-  if (!makeStencil(reader_.header(), x, z, s)) {
+  if (!stencilAt(reader_.header(), ix, iz, tx, tz, s)) {
     return out;
   }
   for (int c = 0; c < s.corners; ++c) {
@@ -237,7 +243,7 @@ FlowSample StormSampler::withFill(double x, double z, bool rate) const {
     allData = allData && (!(weights[c] > 0.0) || h.samples[cz[c] * nx + cx[c]] > 0);
   }
   if (allData) {
-    return rate ? this->rate(x, z) : sample(x, z); // the file's values, bit for bit
+    return interpolateCell(ix, iz, tx, tz, rate); // the file's values, bit for bit (as sample / rate)
   }
   FlowSample out;
   out.valid = true;

@@ -113,6 +113,8 @@ private:
   [[nodiscard]] FlowSample withFill(double x, double z, bool rate) const;
   /// sample() (rate = false) and rate().
   [[nodiscard]] FlowSample interpolate(double x, double z, bool rate) const;
+  /// interpolate() in the cell (ix, iz) at fractions (tx, tz), as locate() found them.
+  [[nodiscard]] FlowSample interpolateCell(std::size_t ix, std::size_t iz, double tx, double tz, bool rate) const;
   /// The file's values at voxel i, current time (rate: their time derivative).
   [[nodiscard]] FlowSample voxel(std::size_t i, bool rate) const;
   static void accumulate(FlowSample& out, double weight, const FlowSample& v);
