@@ -63,6 +63,11 @@ void placeScene(const PlaceOptions& o) {
     core::failInput(o.output.empty() ? "placement.output" : "--output",
                     "{} is a folder; give the path of the placed scene file (a .yaml), e.g. {}", scenePath.string(),
                     (scenePath / "placed.yaml").string());
+  // The tables and the checkpoint go beside the placed scene: with --output elsewhere, the default
+  // folder "<file stem>-out" is taken there, so two placements of one file do not share them.
+  const fs::path folder = o.output.empty() || scene.output.folderGiven
+                              ? scene.output.folder
+                              : scenePath.parent_path() / fs::path(scene.output.folder).filename();
   std::cout << fmt::format("placing {} units of {} ({}), {} threads\n",
                            scene.placement.method == placement::Method::Crane ? "crane-lowered" : "grid-dropped",
                            scene.placement.shape, scene.sourceName, omp_get_max_threads());
@@ -83,7 +88,7 @@ void placeScene(const PlaceOptions& o) {
   identified.hydro = kNoHydro;                // uninitialised string with -O2 -Wmaybe-uninitialized
   const std::string identity = simulation::sceneIdentity(identified) + "# placement file as run\n" + effectiveText;
   const std::string fingerprint = simulation::fingerprintOf(identity);
-  const fs::path checkpointPath = scene.output.folder / "place-checkpoint.nc";
+  const fs::path checkpointPath = folder / "place-checkpoint.nc";
   std::optional<placement::PlacementProgress> resume;
   if (o.restart) {
     simulation::Checkpoint c = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
@@ -99,15 +104,15 @@ void placeScene(const PlaceOptions& o) {
     core::failInput("--checkpoint-minutes", "{}: give the wall time between checkpoints in minutes (>= 0; 0 = only "
                                             "when stopped by SIGINT or SIGTERM)", o.checkpointMinutes);
   std::error_code ec;
-  fs::create_directories(scene.output.folder, ec);
-  if (ec) core::failInput(scene.output.folder.string(), "cannot create the output folder ({}); set output.folder in {} "
-                                                        "or --set output.folder=... to a writable place",
-                          ec.message(), o.file);
   // The placed scene's folder too, now: not after an hour of placing (its files are written last).
   fs::create_directories(scenePath.parent_path(), ec);
   if (ec) core::failInput(o.output.empty() ? "placement.output" : "--output",
                           "cannot create the folder {} of the placed scene ({}); give a path in a writable folder",
                           scenePath.parent_path().string(), ec.message());
+  fs::create_directories(folder, ec);
+  if (ec) core::failInput(folder.string(), "cannot create the output folder ({}); set output.folder in {} "
+                                                        "or --set output.folder=... to a writable place",
+                          ec.message(), o.file);
   const StopSignals signals;
   auto lastCheckpoint = std::chrono::steady_clock::now();
   placement::PlaceOptions options;
@@ -139,11 +144,11 @@ void placeScene(const PlaceOptions& o) {
     std::cerr << "error: the placement stopped: " << e.what() << "\n";
     std::exit(3);
   }
-  placement::writePlacementOutputs(effectiveText, result, scenePath, scene.output.folder);
+  placement::writePlacementOutputs(effectiveText, result, scenePath, folder);
   fs::remove(checkpointPath, ec); // the placed scene is the result now
   std::cout << placement::summaryText(result);
   std::cout << fmt::format("placed scene: {}\ntables: {}/units.csv, placement.json, placement.txt\n",
-                           scenePath.string(), scene.output.folder.string());
+                           scenePath.string(), folder.string());
   // A placement can end with units inside the statics or each other (a grid reaching past the end
   // of its slope, units pushed through a thin static piece): `armour run` and `storm` would refuse
   // the placed scene, so say so now, with the fix, instead of exiting 0.

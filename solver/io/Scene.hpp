@@ -242,6 +242,7 @@ struct ContactSettings {
 
 struct OutputSettings {
   std::filesystem::path folder;    ///< absolute; default "<scene stem>-out" beside the scene file
+  bool folderGiven = false;        ///< `folder` came from the file or a --set, not the default
   double vtkInterval = 0.1;        ///< between VTK snapshots (unit: s of simulated time); 0 = none
   double seriesInterval = 0.01;    ///< between time-series rows (unit: s); 0 = none
   /// Between checkpoints (checkpoint.nc, for `armour run --restart`) (unit: s of simulated time);

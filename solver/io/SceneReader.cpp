@@ -667,6 +667,7 @@ void readRunSettings(const Block& top, Scene& scene) {
   const Block o(ctx, top.has("output") ? top.get("output") : YAML::Node(), "output", kOutputKeys);
   const std::string folder = o.text("folder", "a folder path, relative to the scene file's folder", scene.name + "-out");
   scene.output.folder = std::filesystem::absolute(ctx.baseDir / folder).lexically_normal();
+  scene.output.folderGiven = o.has("folder");
   scene.output.vtkInterval = o.number("vtk_interval", {"s", kNonNegative, "0.1; 0 = none"}, scene.output.vtkInterval);
   scene.output.seriesInterval = o.number("series_interval", {"s", kNonNegative, "0.01; 0 = none"}, scene.output.seriesInterval);
   scene.output.checkpointInterval =

@@ -3,7 +3,7 @@
 # Placement end to end with the smoke variant of seed 001's dolos set-up
 # (cases/placement/dolos-smoke.yaml):
 #  - `armour place` writes the placed scene beside the file and units.csv / placement.json /
-#    placement.txt in its output folder; every unit is placed and none is still moving;
+#    placement.txt in its output folder (with --output, the folder beside the placed scene); every unit is placed and none is still moving;
 #  - `armour analyse` of the placed scene against itself finds no displacement, every unit
 #    touches something (contact number >= 1) and the P2 values lie in [-1/2, 1];
 #  - `armour ensemble --runs 2` places two members with different seeds and reports mean +- std;
@@ -122,6 +122,11 @@ grep -q "a-folder is a folder; give the path of the placed scene file" <<< "$msg
 "$armour" --log-level warn place "$out/dolos.yaml" --threads 1 --output "$out/new/deeper/placed.yaml" > "$out/place-new.txt" \
   || fail "place into a new folder failed: $(cat "$out/place-new.txt")"
 [[ -f "$out/new/deeper/placed.yaml" ]] || fail "no placed scene in the new folder"
+# Its tables go beside it (the default folder dolos-out taken there), not beside the file, where
+# another placement of the same file would overwrite them (and share its checkpoint).
+for f in units.csv placement.json placement.txt; do
+  [[ -f "$out/new/deeper/dolos-out/$f" ]] || fail "--output: no $f beside the placed scene"
+done
 set +e
 msg=$("$armour" place "$out/dolos.yaml" --output "$out/dolos.yaml/inside/placed.yaml" 2>&1); code=$?
 set -e
