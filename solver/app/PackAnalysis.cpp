@@ -256,6 +256,15 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
       double volume = 0.0;
       for (double d : dn) volume += d * d * d;
       r.porosity = 1.0 - volume / (r.packingHull.area * r.thickness->thickness);
+      if (!(r.porosity >= 0.0 && r.porosity < 1.0)) {
+        // The hull runs through the outer centroids, half a unit inside the pack's edge: for a
+        // few units it is smaller than their footprint and the formula leaves [0, 1).
+        r.porosityNote = fmt::format("1 - N V / (A t) = {:.3g} is no porosity: the hull of the {} centroids "
+                                     "({:.3g} m^2) is too small against the units' volume; analyse a pack of "
+                                     "more units",
+                                     r.porosity, positions.size(), r.packingHull.area);
+        r.porosity = std::nan("");
+      }
     } catch (const core::InputError&) {
     }
   }
@@ -312,9 +321,10 @@ std::string packText(const PackReport& r) {
   if (r.thickness)
     t += fmt::format("layer thickness     {:.3f} m (layer coefficient {:.3f}) above the underlayer's top ({:.3f} m "
                      "above the slope face: the mean top of its {} surface stones of {}; of every stone {:.3f} m), "
-                     "porosity {:.3f}\n",
+                     "porosity {}\n",
                      r.thickness->thickness, r.thickness->layerCoefficient, r.underlayerTop, r.surfaceStones,
-                     r.supportStones, r.underlayerTopAllStones, r.porosity);
+                     r.supportStones, r.underlayerTopAllStones,
+                     r.porosityNote.empty() ? fmt::format("{:.3f}", r.porosity) : "n/a (" + r.porosityNote + ")");
   const double count = static_cast<double>(std::max<std::size_t>(r.units.size(), 1));
   t += fmt::format("underlayer          {} units touch it ({:.3f}); {} stacked ({:.3f}: no support touched, centroid "
                    "> 1 Dn above the underlayer)\n",

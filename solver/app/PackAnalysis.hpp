@@ -74,7 +74,10 @@ struct PackReport {
   analysis::PackContacts contacts;
   analysis::PackingDensity packingHull;
   std::optional<analysis::LayerThickness> thickness;
-  double porosity = 0.0;            ///< 1 - N V / (A t) over the hull (unit: -); 0 without a thickness
+  /// 1 - N V / (A t) over the hull (unit: -); 0 without a thickness; NaN when that falls outside
+  /// [0, 1) (porosityNote says why: a hull of a few centroids is smaller than the units' footprint).
+  double porosity = 0.0;
+  std::string porosityNote;
   /// The layer's base for the thickness: the mean top of the surface stones (support bodies whose
   /// top no other support covers, analysis/UnderlayerSurface) whose centroids lie in the thickness
   /// window, slope-normal above the frame plane; 0 without any (unit: m).

@@ -63,7 +63,7 @@ analysis::PackMeasurer packMeasurer(const io::Scene& scene) {
     analysis::PackMeasures m;
     m.p2 = pack.p2Mean.p2;
     m.p2Q = pack.p2Q.p2;
-    if (pack.thickness) m.porosity = pack.porosity;
+    if (pack.thickness && std::isfinite(pack.porosity)) m.porosity = pack.porosity;
     return m;
   };
 }

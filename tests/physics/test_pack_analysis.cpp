@@ -185,3 +185,29 @@ static:
     EXPECT_NE(what.find("cannot be evaluated"), std::string::npos) << what;
   }
 }
+
+// Three cubes side by side on a slope: the hull of their centroids (1.3 m^2) is smaller than
+// their footprint (3 m^2), so 1 - N V / (A t) comes out at -1.24. That is no porosity: it is
+// reported as not available, with the reason, instead of a negative number.
+TEST(PackAnalysis, AFewUnitsHaveNoPorosity) {
+  const std::string yaml = R"(
+duration: 1
+materials:
+  concrete: {density: 2400, friction: 0.7, restitution: 0.1}
+bodies:
+  - {name: c0, shape: cube, dn: 1, material: concrete, position: [1.776393, 0, 1.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c1, shape: cube, dn: 1, material: concrete, position: [3.776393, 0, 2.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
+  - {name: c2, shape: cube, dn: 1, material: concrete, position: [2.776393, 1.2, 1.947214], orientation: {euler_deg: [0, -26.565051, 0]}}
+static:
+  - {type: slope, name: bed, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 3}
+)";
+  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "three.yaml");
+  const app::PackReport r = app::analysePack(scene, app::AnalyseSettings{});
+  ASSERT_TRUE(r.thickness.has_value());
+  // The hull: a triangle, sqrt(5) m along the face (c0 to c1) by 1.2 m across it (c2), so
+  // A = sqrt(5) x 1.2 / 2 = 1.3416 m^2; t = 1 m, N V = 3 m^3: 1 - 3 / 1.3416 = -1.236.
+  EXPECT_NEAR(r.packingHull.area, std::sqrt(5.0) * 1.2 / 2.0, 1e-4);
+  EXPECT_TRUE(std::isnan(r.porosity));
+  EXPECT_NE(r.porosityNote.find("-1.24 is no porosity"), std::string::npos) << r.porosityNote;
+  EXPECT_NE(app::packText(r).find("porosity n/a ("), std::string::npos) << app::packText(r);
+}
