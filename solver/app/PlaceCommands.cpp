@@ -110,8 +110,8 @@ void placeScene(const PlaceOptions& o) {
                           "cannot create the folder {} of the placed scene ({}); give a path in a writable folder",
                           scenePath.parent_path().string(), ec.message());
   fs::create_directories(folder, ec);
-  if (ec) core::failInput(folder.string(), "cannot create the output folder ({}); set output.folder in {} "
-                                                        "or --set output.folder=... to a writable place",
+  if (ec) core::failInput(folder.string(), "cannot create the output folder ({}); set output.folder in {} or --set "
+                                           "output.folder=... to a writable place",
                           ec.message(), o.file);
   const StopSignals signals;
   auto lastCheckpoint = std::chrono::steady_clock::now();

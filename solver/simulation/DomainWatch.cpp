@@ -9,12 +9,10 @@ DomainWatch::DomainWatch(const StaticDomain& domain, const World& world) : domai
   const std::size_t n = world.bodies().size();
   outside_.assign(n, 0);
   for (BodyId b = 0; b < n; ++b) {
-    outside_[b] = contains(world.bodies().position(b)) ? 0 : 1;
+    outside_[b] = domain_.beyondEdge(world.bodies().position(b)) ? 1 : 0;
     outsideCount_ += static_cast<std::size_t>(outside_[b]);
   }
 }
-
-bool DomainWatch::contains(const Vec3& x) const { return !domain_.beyondEdge(x); }
 
 std::vector<DomainExit> DomainWatch::update(const World& world) {
   std::vector<DomainExit> exits;
@@ -22,7 +20,7 @@ std::vector<DomainExit> DomainWatch::update(const World& world) {
   for (const BodyId b : world.bodies().awakeBodies()) {
     if (b >= outside_.size()) continue;
     const Vec3& x = world.bodies().position(b);
-    const char out = contains(x) ? 0 : 1;
+    const char out = domain_.beyondEdge(x) ? 1 : 0;
     if (out == outside_[b]) continue;
     outside_[b] = out;
     if (out != 0) {

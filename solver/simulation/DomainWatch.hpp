@@ -37,9 +37,6 @@ public:
 
   /// Bodies past an edge of the domain at the last call (unit: -).
   [[nodiscard]] std::size_t outsideCount() const { return outsideCount_; }
-  [[nodiscard]] const StaticDomain& domain() const { return domain_; }
-  /// Not past an edge (StaticDomain::beyondEdge).
-  [[nodiscard]] bool contains(const Vec3& x) const;
 
   /// One log line for an exit: the body, the time, the position, the bounds and the fix.
   [[nodiscard]] std::string describe(const World& world, const DomainExit& exit) const;

@@ -403,7 +403,8 @@ private:
   /// m.key's cached patches moved to the current poses, if the pair has moved less than the reuse
   /// distance r since they were found and no sample left out then can touch in this step: `travel`
   /// (m, what the pair may close in it) plus r stays below the margin they were found with.
-  bool reuseManifold(PairManifold& m, double travel) const;
+  /// turnedCos = cos(r): the turn test (computed once per narrow phase by the caller).
+  bool reuseManifold(PairManifold& m, double travel, double turnedCos) const;
   /// The cache after a narrow phase: reused pairs keep their entries, the others' are made anew.
   void cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused);
   [[nodiscard]] std::vector<double> saveManifoldCache() const;

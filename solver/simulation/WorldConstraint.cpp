@@ -87,13 +87,14 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
     return 1.1 * dt * ((va - vb).norm() + rim(a) + (b != a ? rim(b) : 0.0));
   };
   const bool reuse = settings_.constraint.reuseDistance > 0.0;
+  const double turnedCos = std::cos(settings_.constraint.reuseDistance);
   std::vector<char> reused(keys.size(), 0);
 #pragma omp parallel for schedule(dynamic, 1) if (keys.size() >= 16)
   for (std::size_t w = 0; w < keys.size(); ++w) {
     PairManifold& m = manifolds[w];
     m.key = keys[w];
     const BodyId a = m.key.first;
-    if (reuse && reuseManifold(m, travel(a, (m.key.second & kStaticBits) != 0 ? a : m.key.second))) {
+    if (reuse && reuseManifold(m, travel(a, (m.key.second & kStaticBits) != 0 ? a : m.key.second), turnedCos)) {
       reused[w] = 1;
       continue;
     }

@@ -37,7 +37,7 @@ void World::relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const {
   q = qb.conjugate() * bodies_.orientation(a);
 }
 
-bool World::reuseManifold(PairManifold& m, double travel) const {
+bool World::reuseManifold(PairManifold& m, double travel, double turnedCos) const {
   const auto it = manifoldCache_.find(pairKey(m.key));
   if (it == manifoldCache_.end()) {
     return false;
@@ -51,8 +51,7 @@ bool World::reuseManifold(PairManifold& m, double travel) const {
   // Turned by angle: a point half a Dn from the centre moves by angle Dn / 2. A sample that was
   // outside the margin then is still more than margin - r away, so it cannot touch in this step
   // while travel + r < margin.
-  // angle * Dn / 2 < r  <=>  |q . q_then| = cos(angle / 2) > cos(r / Dn), without an acos.
-  const double turnedCos = std::cos(settings_.constraint.reuseDistance);
+  // angle * Dn / 2 < r Dn  <=>  |q . q_then| = cos(angle / 2) > cos(r) = turnedCos, without an acos.
   if (!((p - cm.relP).squaredNorm() < limit * limit) || !(std::abs(q.dot(cm.relQ)) > turnedCos) ||
       !(travel + limit < cm.margin)) {
     return false;

@@ -110,24 +110,13 @@ grep -q "deep-overlap.yaml: the simulation stopped: .*body 'first' and body 'sec
 [ "$(wc -l < "$out/overlap/state_at_error.csv")" -eq 3 ] || fail "no state_at_error.csv with 2 rows"
 # A body that slides off a slope's crest leaves the static domain (where the crest is cut): the
 # run says so once, with the time and the bounds, and counts it at the end; `armour analyse` of
-# the final state counts it off the model (a frictionless cube at 4 m/s, ours).
-cat > "$out/crest.yaml" <<'YAML'
-duration: 1.2
-materials:
-  slick: {density: 2400, friction: 0, restitution: 0.1}
-bodies:
-  - {name: cube, shape: cube, dn: 0.5, material: slick, position: [3, 0, 1.25], velocity: [4, 0, 0]}
-static:
-  - {type: slope, name: bed, material: slick, origin: [0, 0], cot: 2, crest_height: 1}
-  - {type: wall, name: south, material: slick, axis: y, position: -1, side: min}
-  - {type: wall, name: north, material: slick, axis: y, position: 1, side: max}
-YAML
-"$armour" --log-level warn run "$out/crest.yaml" --threads 1 -o "$out/crest" 2>/dev/null || fail "the crest run failed"
+# the final state counts it off the model (crest-slide.yaml: a frictionless cube at 4 m/s).
+"$armour" --log-level warn run "$scenes/crest-slide.yaml" --threads 1 -o "$out/crest" 2>/dev/null || fail "the crest run failed"
 [ "$(grep -c "body 'cube' left the static domain" "$out/crest/run.log")" -eq 1 ] \
   || fail "no single exit warning in: $(grep -i domain "$out/crest/run.log")"
 grep -q "1 bodies left the static domain in this run (1 outside it at the end)" "$out/crest/run.log" \
   || fail "no exit count in: $(grep -i domain "$out/crest/run.log")"
-msg=$("$armour" --log-level warn analyse "$out/crest.yaml" --state "$out/crest/final_state.csv" --output "$out/crest-analysis" 2>&1) \
+msg=$("$armour" --log-level warn analyse "$scenes/crest-slide.yaml" --state "$out/crest/final_state.csv" --output "$out/crest-analysis" 2>&1) \
   || fail "analyse of the crest run failed: $msg"
 grep -q "^off the model       1 units beyond the static domain" <<< "$msg" || fail "not counted off the model: $msg"
 echo "run CLI: all checks passed"

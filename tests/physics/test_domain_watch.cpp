@@ -16,18 +16,9 @@ using namespace armour;
 using namespace armour::simulation;
 
 TEST(DomainWatch, ACubeSlidingOffTheCrestIsReportedOnceAtItsExitTime) {
-  // Ours: a 1:2 slope 1 m high (crest edge at x = 2 m), a 0.5 m cube resting on the crest at
-  // x = 3 m moving onshore at 4 m/s; friction 0, so nothing slows it.
-  const std::string yaml = R"(
-duration: 2
-materials:
-  slick: {density: 2400, friction: 0, restitution: 0.1}
-bodies:
-  - {name: cube, shape: cube, dn: 0.5, material: slick, position: [3, 0, 1.25], velocity: [4, 0, 0]}
-static:
-  - {type: slope, name: bed, material: slick, origin: [0, 0], cot: 2, crest_height: 1}
-)";
-  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "crest.yaml");
+  // tests/data/scenes/crest-slide.yaml (ours): a 1:2 slope 1 m high (crest edge at x = 2 m), a
+  // 0.5 m cube resting on the crest at x = 3 m moving onshore at 4 m/s; friction 0.
+  const io::Scene scene = io::readScene(std::filesystem::path(ARMOUR_TEST_DATA) / "scenes" / "crest-slide.yaml");
   BuiltScene built = buildWorld(scene);
   World& world = *built.world;
   DomainWatch watch(built.domain, world);

@@ -45,6 +45,20 @@ static:
   return scene;
 }
 
+/// 1 m cubes lying on the face of a 1:2 slope 3 m high (crest edge at x = 6 m), their centroids
+/// half a Dn above it (ours): c0 and c1 sqrt(5) m apart up the face, c2 between them 1.2 m along y.
+/// The first `count` of them.
+io::Scene cubesOnTheFace(std::size_t count) {
+  const char* cubes[] = {
+      "  - {name: c0, shape: cube, dn: 1, material: concrete, position: [1.776393, 0, 1.447214], orientation: {euler_deg: [0, -26.565051, 0]}}\n",
+      "  - {name: c1, shape: cube, dn: 1, material: concrete, position: [3.776393, 0, 2.447214], orientation: {euler_deg: [0, -26.565051, 0]}}\n",
+      "  - {name: c2, shape: cube, dn: 1, material: concrete, position: [2.776393, 1.2, 1.947214], orientation: {euler_deg: [0, -26.565051, 0]}}\n"};
+  std::string yaml = "duration: 1\nmaterials:\n  concrete: {density: 2400, friction: 0.7, restitution: 0.1}\nbodies:\n";
+  for (std::size_t i = 0; i < count; ++i) yaml += cubes[i];
+  yaml += "static:\n  - {type: slope, name: bed, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 3}\n";
+  return io::parseScene(yaml, std::filesystem::temp_directory_path(), "cubes-on-the-face.yaml");
+}
+
 } // namespace
 
 TEST(PackAnalysis, TowerOfCubesHasKnownContactsAndOrder) {
@@ -150,17 +164,7 @@ static:
 // crest stretched to reach it. A state that puts a unit deep inside the slope is refused as input,
 // naming the state.
 TEST(PackAnalysis, AUnitOffTheCrestEdgeIsOffTheModelAndAUnitInTheSlopeIsRefused) {
-  const std::string yaml = R"(
-duration: 1
-materials:
-  concrete: {density: 2400, friction: 0.7, restitution: 0.1}
-bodies:
-  - {name: c0, shape: cube, dn: 1, material: concrete, position: [1.776393, 0, 1.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: c1, shape: cube, dn: 1, material: concrete, position: [3.776393, 0, 2.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
-static:
-  - {type: slope, name: bed, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 3}
-)";
-  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "crest-edge.yaml");
+  const io::Scene scene = cubesOnTheFace(2);
   app::PoseMap state = app::posesOf(scene);
   // c1 at rest on the seabed (z = 0) 40 m onshore of the crest edge (x = 6 m).
   state["c1"].position = Eigen::Vector3d(46.0, 0.0, 0.5 - 1e-6);
@@ -190,18 +194,7 @@ static:
 // their footprint (3 m^2), so 1 - N V / (A t) comes out at -1.24. That is no porosity: it is
 // reported as not available, with the reason, instead of a negative number.
 TEST(PackAnalysis, AFewUnitsHaveNoPorosity) {
-  const std::string yaml = R"(
-duration: 1
-materials:
-  concrete: {density: 2400, friction: 0.7, restitution: 0.1}
-bodies:
-  - {name: c0, shape: cube, dn: 1, material: concrete, position: [1.776393, 0, 1.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: c1, shape: cube, dn: 1, material: concrete, position: [3.776393, 0, 2.447214], orientation: {euler_deg: [0, -26.565051, 0]}}
-  - {name: c2, shape: cube, dn: 1, material: concrete, position: [2.776393, 1.2, 1.947214], orientation: {euler_deg: [0, -26.565051, 0]}}
-static:
-  - {type: slope, name: bed, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 3}
-)";
-  const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "three.yaml");
+  const io::Scene scene = cubesOnTheFace(3);
   const app::PackReport r = app::analysePack(scene, app::AnalyseSettings{});
   ASSERT_TRUE(r.thickness.has_value());
   // The hull: a triangle, sqrt(5) m along the face (c0 to c1) by 1.2 m across it (c2), so
