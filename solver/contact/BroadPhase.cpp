@@ -15,6 +15,10 @@ bool overlapXYZ(const geometry::Box3& a, const geometry::Box3& b) {
   return a.min.x() <= b.max.x() && b.min.x() <= a.max.x() && overlapYZ(a, b);
 }
 
+bool contains(const geometry::Box3& outer, const geometry::Box3& inner) {
+  return (outer.min.array() <= inner.min.array()).all() && (inner.max.array() <= outer.max.array()).all();
+}
+
 } // namespace
 
 void BroadPhase::buildResting(const std::vector<geometry::Box3>& boxes, const std::vector<std::uint8_t>& active) {
@@ -94,6 +98,43 @@ void BroadPhase::buildResting(const std::vector<geometry::Box3>& boxes, const st
   }
 }
 
+void BroadPhase::findNeighbours(const std::vector<geometry::Box3>& boxes, Neighbours& n) {
+  ++neighbourSearches_;
+  n.resting.clear();
+  n.valid = true;
+  const geometry::Box3& g = n.grown;
+  if (++query_ == 0) { // wrapped: clear the stamps
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    query_ = 1;
+  }
+  if (nx_ > 0) {
+    const int x0 = std::clamp(static_cast<int>(std::floor((g.min.x() - gridX0_) / cell_)), 0, nx_ - 1);
+    const int x1 = std::clamp(static_cast<int>(std::floor((g.max.x() - gridX0_) / cell_)), 0, nx_ - 1);
+    const int y0 = std::clamp(static_cast<int>(std::floor((g.min.y() - gridY0_) / cell_)), 0, ny_ - 1);
+    const int y1 = std::clamp(static_cast<int>(std::floor((g.max.y() - gridY0_) / cell_)), 0, ny_ - 1);
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const auto c = static_cast<std::size_t>(x + nx_ * y);
+        for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+          const std::uint32_t j = cellItems_[k];
+          if (stamp_[j] == query_) {
+            continue;
+          }
+          stamp_[j] = query_;
+          if (overlapXYZ(g, boxes[j])) {
+            n.resting.push_back(j);
+          }
+        }
+      }
+    }
+  }
+  for (const std::uint32_t j : large_) {
+    if (overlapXYZ(g, boxes[j])) {
+      n.resting.push_back(j);
+    }
+  }
+}
+
 void BroadPhase::findPairs(const std::vector<geometry::Box3>& boxes, const std::vector<std::uint8_t>& active,
                            std::vector<BodyPair>& pairs) {
   pairs.clear();
@@ -105,6 +146,8 @@ void BroadPhase::findPairs(const std::vector<geometry::Box3>& boxes, const std::
     restingValid_ = true;
     stamp_.assign(n, 0);
     query_ = 0;
+    neighbours_.resize(n);
+    for (Neighbours& near : neighbours_) near.valid = false; // the grid is new
     // The active set changed: start the sweep order again from the active boxes.
     order_.clear();
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -143,38 +186,21 @@ void BroadPhase::findPairs(const std::vector<geometry::Box3>& boxes, const std::
       }
     }
   }
-  // Active with resting: the grid cells each active box covers, then the large boxes.
+  // Active with resting: each active box's neighbours (found again when it has left the grown box
+  // they were found for), then the exact overlap test.
   for (const std::uint32_t i : order_) {
     const auto& bi = boxes[i];
     if (!bi.min.allFinite() || !bi.max.allFinite()) {
       continue; // a body with a non-finite state: the caller's guard rail names it
     }
-    if (++query_ == 0) { // wrapped: clear the stamps
-      std::fill(stamp_.begin(), stamp_.end(), 0);
-      query_ = 1;
+    Neighbours& near = neighbours_[i];
+    if (!near.valid || !contains(near.grown, bi)) {
+      const double grow = kFatMargin * bi.size().maxCoeff();
+      near.grown.min = bi.min.array() - grow;
+      near.grown.max = bi.max.array() + grow;
+      findNeighbours(boxes, near);
     }
-    if (nx_ > 0) {
-      const int x0 = std::clamp(static_cast<int>(std::floor((bi.min.x() - gridX0_) / cell_)), 0, nx_ - 1);
-      const int x1 = std::clamp(static_cast<int>(std::floor((bi.max.x() - gridX0_) / cell_)), 0, nx_ - 1);
-      const int y0 = std::clamp(static_cast<int>(std::floor((bi.min.y() - gridY0_) / cell_)), 0, ny_ - 1);
-      const int y1 = std::clamp(static_cast<int>(std::floor((bi.max.y() - gridY0_) / cell_)), 0, ny_ - 1);
-      for (int y = y0; y <= y1; ++y) {
-        for (int x = x0; x <= x1; ++x) {
-          const auto c = static_cast<std::size_t>(x + nx_ * y);
-          for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
-            const std::uint32_t j = cellItems_[k];
-            if (stamp_[j] == query_) {
-              continue;
-            }
-            stamp_[j] = query_;
-            if (overlapXYZ(bi, boxes[j])) {
-              pairs.emplace_back(std::min(i, j), std::max(i, j));
-            }
-          }
-        }
-      }
-    }
-    for (const std::uint32_t j : large_) {
+    for (const std::uint32_t j : near.resting) {
       if (overlapXYZ(bi, boxes[j])) {
         pairs.emplace_back(std::min(i, j), std::max(i, j));
       }

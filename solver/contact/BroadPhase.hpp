@@ -13,7 +13,10 @@
 ///   box for the cells it covers. Boxes much larger than a cell (a slope's toe, a long wall piece)
 ///   are kept in a short list that every active box tests.
 /// So a step costs in proportion to the active boxes and their neighbours, not to the whole scene:
-/// 3000 static rocks under 200 moving units cost the same as the rocks the units touch.
+/// 3000 static rocks under 200 moving units cost the same as the rocks the units touch. An active
+/// box keeps the resting boxes near it (those overlapping its box grown by kFatMargin of its size)
+/// and queries the grid again only when it leaves that grown box: a unit rocking in its place
+/// tests a short list, not the grid's cells, and finds the same pairs.
 /// Pairs are returned sorted (i < j, lexicographic), so everything downstream is independent of
 /// the sort history and of the thread count. A pair is reported only if at least one of its
 /// bodies is active: static-static and sleeping-sleeping pairs cost nothing.
@@ -41,6 +44,9 @@ public:
   void invalidate() { restingValid_ = false; }
   /// Number of grid rebuilds so far (for tests and statistics).
   [[nodiscard]] std::size_t restingBuilds() const { return restingBuilds_; }
+  /// Number of times an active box's resting neighbours were searched for in the grid so far
+  /// (for tests and statistics; the other queries used the kept lists).
+  [[nodiscard]] std::size_t neighbourSearches() const { return neighbourSearches_; }
 
 private:
   void buildResting(const std::vector<geometry::Box3>& boxes, const std::vector<std::uint8_t>& active);
@@ -49,6 +55,7 @@ private:
   std::vector<std::uint8_t> activeCopy_;    ///< flags of the last call
   bool restingValid_ = false;
   std::size_t restingBuilds_ = 0;
+  std::size_t neighbourSearches_ = 0;
   // Resting grid over x, y (CSR: items of cell c are cellItems_[cellStart_[c] .. cellStart_[c+1])).
   double gridX0_ = 0.0, gridY0_ = 0.0, cell_ = 1.0;
   int nx_ = 0, ny_ = 0;
@@ -57,6 +64,19 @@ private:
   std::vector<std::uint32_t> large_;        ///< resting boxes spanning many cells
   std::vector<std::uint32_t> stamp_;        ///< per box: last query that saw it (dedupe across cells)
   std::uint32_t query_ = 0;
+  /// An active box's resting neighbours: every resting box overlapping `grown`, which holds the
+  /// active box as it was then, grown by kFatMargin of its largest side on every side.
+  struct Neighbours {
+    geometry::Box3 grown;
+    std::vector<std::uint32_t> resting;
+    bool valid = false;
+  };
+  std::vector<Neighbours> neighbours_;      ///< per body index (used for active ones)
+  /// Fraction of an active box's largest side it may move before its neighbours are found again
+  /// (ours): larger keeps lists longer and makes them longer.
+  static constexpr double kFatMargin = 0.05;
+  /// Fill n.resting with the resting boxes overlapping n.grown (the grid's cells and the large boxes).
+  void findNeighbours(const std::vector<geometry::Box3>& boxes, Neighbours& n);
 };
 
 /// Reference O(N^2) version, for tests.

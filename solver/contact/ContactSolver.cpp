@@ -84,11 +84,11 @@ void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = n.cross(t1);
 }
 
-void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodies, double h) {
+void prepareConstraint(const ContactConstraint& c, std::span<ConstraintPoint> points,
+                       const std::vector<SolverBody>& bodies, double h) {
   const SolverBody& a = bodies[static_cast<std::size_t>(c.bodyA)];
   const SolverBody& b = bodies[static_cast<std::size_t>(c.bodyB)];
-  for (int k = 0; k < c.count; ++k) {
-    ConstraintPoint& p = c.points[k];
+  for (ConstraintPoint& p : points) {
     p.normalMass = effectiveMass(a, b, p.rA, p.rB, p.normal);
     p.softness = makeSoftness(p.stiffness, c.dampingRatio, p.normalMass, h);
     p.tangentMass[0] = effectiveMass(a, b, p.rA, p.rB, p.tangent1);
@@ -98,11 +98,10 @@ void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodi
   }
 }
 
-void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies) {
-  for (const ContactConstraint& c : constraints) {
+void warmStart(const ConstraintSet& constraints, std::vector<SolverBody>& bodies) {
+  for (const ContactConstraint& c : constraints.patches) {
     const Pair<> pair(c, bodies);
-    for (int k = 0; k < c.count; ++k) {
-      const ConstraintPoint& p = c.points[k];
+    for (const ConstraintPoint& p : constraints.pointsOf(c)) {
       const Vec3 P = p.normalImpulse * p.normal + p.tangentImpulse[0] * p.tangent1 + p.tangentImpulse[1] * p.tangent2;
       pair.apply(P, p.rA, p.rB);
     }
@@ -114,11 +113,10 @@ namespace {
 /// One constraint's Gauss-Seidel update (solveContacts). A point whose update is zero (a
 /// speculative point that stays open, a friction impulse already at its clamp) applies nothing.
 template <Ground kGround>
-void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, double invH, const SolveSettings& settings,
-                     bool useBias) {
+void solveConstraint(const ContactConstraint& c, std::span<ConstraintPoint> points, std::vector<SolverBody>& bodies,
+                     double invH, const SolveSettings& settings, bool useBias) {
   const Pair<kGround> pair(c, bodies);
-  for (int k = 0; k < c.count; ++k) {
-    ConstraintPoint& p = c.points[k];
+  for (ConstraintPoint& p : points) {
     const double s = p.baseSeparation + p.normal.dot(pair.moved(p.rA, p.rB));
     double bias = 0.0, massScale = 1.0, impulseScale = 0.0;
     if (s > 0.0) {
@@ -136,8 +134,7 @@ void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, doub
     p.maxNormalImpulse = std::max(p.maxNormalImpulse, updated);
     if (applied != 0.0) pair.apply(applied * p.normal, p.rA, p.rB);
   }
-  for (int k = 0; k < c.count; ++k) {
-    ConstraintPoint& p = c.points[k];
+  for (ConstraintPoint& p : points) {
     const Vec3 vr = pair.relativeVelocity(p.rA, p.rB);
     double b0 = 0.0, b1 = 0.0; // the anchor's bias: pull the slip made since the point stuck back
     if (useBias && settings.frictionAnchors && p.softness.biasRate > 0.0) {
@@ -165,16 +162,17 @@ void solveConstraint(ContactConstraint& c, std::vector<SolverBody>& bodies, doub
 
 } // namespace
 
-void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
+void solveContacts(ConstraintSet& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias) {
   const double invH = 1.0 / h;
-  for (ContactConstraint& c : constraints) {
+  for (const ContactConstraint& c : constraints.patches) {
+    const std::span<ConstraintPoint> points = constraints.pointsOf(c);
     if (c.bodyB == 0) {
-      solveConstraint<Ground::B>(c, bodies, invH, settings, useBias);
+      solveConstraint<Ground::B>(c, points, bodies, invH, settings, useBias);
     } else if (c.bodyA == 0) {
-      solveConstraint<Ground::A>(c, bodies, invH, settings, useBias);
+      solveConstraint<Ground::A>(c, points, bodies, invH, settings, useBias);
     } else {
-      solveConstraint<Ground::None>(c, bodies, invH, settings, useBias);
+      solveConstraint<Ground::None>(c, points, bodies, invH, settings, useBias);
     }
   }
 }
@@ -189,19 +187,18 @@ Vec3 slipAtEnd(const ContactConstraint& c, const ConstraintPoint& p, const std::
   return (p.slip[0] + p.tangent1.dot(step)) * p.tangent1 + (p.slip[1] + p.tangent2.dot(step)) * p.tangent2;
 }
 
-void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+void applyRestitution(ConstraintSet& constraints, std::vector<SolverBody>& bodies,
                       const SolveSettings& settings) {
   // Gauss-Seidel passes: the points of a face impact share the body's rotation, and one pass leaves
   // a face landing 15 % short of e (measured: 0.77 for e = 0.9); the passes converge to the block
   // solution, each point reaching -e times its approach speed or leaving with no impulse.
   for (int pass = 0; pass < settings.restitutionPasses; ++pass) {
-    for (ContactConstraint& c : constraints) {
+    for (const ContactConstraint& c : constraints.patches) {
       if (c.restitution == 0.0) {
         continue;
       }
       const Pair<> pair(c, bodies);
-      for (int k = 0; k < c.count; ++k) {
-        ConstraintPoint& p = c.points[k];
+      for (ConstraintPoint& p : constraints.pointsOf(c)) {
         if (p.approachSpeed > -settings.restitutionThreshold || p.maxNormalImpulse == 0.0) {
           continue;
         }

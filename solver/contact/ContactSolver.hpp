@@ -44,6 +44,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace armour::contact {
@@ -95,15 +96,33 @@ struct ConstraintPoint {
   bool slides = false;            ///< the friction cap held in the last pass (the next step's `sliding`)
 };
 
-/// A reduced contact patch between bodies A (pushed along the normal) and B, as a constraint.
+/// A reduced contact patch between bodies A (pushed along the normal) and B, as a constraint; its
+/// points are ConstraintSet::points[first .. first + count).
 struct ContactConstraint {
   int bodyA = 0, bodyB = 0;       ///< solver body indices, 0 for the ground
   double friction = 0.0;          ///< Coulomb mu_s, while sticking (unit: -)
   double frictionDynamic = 0.0;   ///< Coulomb mu_d, while sliding (unit: -)
   double restitution = 0.0;       ///< e (unit: -)
   double dampingRatio = 1.0;      ///< zeta of each point's spring (unit: -)
-  int count = 0;
-  ConstraintPoint points[4];
+  std::uint32_t first = 0;        ///< index of its first point
+  int count = 0;                  ///< its points (at most 4)
+};
+
+/// A step's constraints: the patches, and their points in one array in patch order, so that the
+/// passes over them stream only the points that exist (a patch has 1 to 4).
+struct ConstraintSet {
+  std::vector<ContactConstraint> patches;
+  std::vector<ConstraintPoint> points;
+  void clear() {
+    patches.clear();
+    points.clear();
+  }
+  [[nodiscard]] std::span<ConstraintPoint> pointsOf(const ContactConstraint& c) {
+    return {points.data() + c.first, static_cast<std::size_t>(c.count)};
+  }
+  [[nodiscard]] std::span<const ConstraintPoint> pointsOf(const ContactConstraint& c) const {
+    return {points.data() + c.first, static_cast<std::size_t>(c.count)};
+  }
 };
 
 /// Settings of the solve that do not belong to a constraint.
@@ -119,13 +138,14 @@ void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2);
 
 /// Effective masses, softness and approach speeds from the bodies at the step start (anchors,
 /// normal, stiffness and impulses already set). h: the substep (s).
-void prepareConstraint(ContactConstraint& c, const std::vector<SolverBody>& bodies, double h);
+void prepareConstraint(const ContactConstraint& c, std::span<ConstraintPoint> points,
+                       const std::vector<SolverBody>& bodies, double h);
 
 /// Apply the accumulated impulses (start of each substep).
-void warmStart(const std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies);
+void warmStart(const ConstraintSet& constraints, std::vector<SolverBody>& bodies);
 
 /// One Gauss-Seidel pass over all constraints. useBias: the solve (true) or the relax (false).
-void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies, double h,
+void solveContacts(ConstraintSet& constraints, std::vector<SolverBody>& bodies, double h,
                    const SolveSettings& settings, bool useBias);
 
 /// A point's slip at the end of the step (world, in its tangent plane; unit: m): the slip it carried
@@ -134,7 +154,7 @@ void solveContacts(std::vector<ContactConstraint>& constraints, std::vector<Solv
 Vec3 slipAtEnd(const ContactConstraint& c, const ConstraintPoint& p, const std::vector<SolverBody>& bodies);
 
 /// Restitution after the substeps (see the file comment).
-void applyRestitution(std::vector<ContactConstraint>& constraints, std::vector<SolverBody>& bodies,
+void applyRestitution(ConstraintSet& constraints, std::vector<SolverBody>& bodies,
                       const SolveSettings& settings);
 
 } // namespace armour::contact

@@ -416,7 +416,8 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
   // down (docs/theory.md, "Elements beyond the sampling box").
   for (std::size_t e = 0; e < el.size(); ++e) {
     const Vec3 c = x + scaledRotation * el.centroid[e];
-    const storm::FlowSample f = sampler_->sampleExtended(c.x(), c.z());
+    const storm::StormSampler::Located at = sampler_->locateExtended(c.x(), c.z());
+    const storm::FlowSample f = sampler_->sampleExtended(at);
     ++sampled;
     if (!f.valid || f.alpha < wetAlpha) {
       continue; // atmospheric: gauge pressure 0
@@ -432,7 +433,7 @@ void StormLoads::evaluateBody(const simulation::World& world, BodyId b, const st
     wetArea += a;
     velocitySum += a * Vec3(f.u, f.v, f.w);
     if (addedMass) {
-      const storm::FlowSample dudt = sampler_->rateExtended(c.x(), c.z());
+      const storm::FlowSample dudt = sampler_->rateExtended(at);
       if (dudt.valid) {
         rateSum += a * Vec3(dudt.u, dudt.v, dudt.w);
         rateArea += a;

@@ -205,7 +205,7 @@ enum class ContactSolver { Penalty, Constraint };
 /// the defaults and their provenance).
 struct ConstraintSolverSettings {
   double timeStep = 1.0 / 200.0;     ///< step with time_step: auto (unit: s)
-  std::size_t substeps = 4;          ///< unit: -
+  std::size_t substeps = 3;          ///< unit: -
   double dampingRatio = 10.0;         ///< of each contact point's spring (unit: -); Box2D v3's default
   double pushSpeed = 3.0;            ///< largest speed of the overlap push-out (unit: m/s)
   double restitutionThreshold = 0.2; ///< unit: m/s

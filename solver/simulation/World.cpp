@@ -10,6 +10,7 @@
 //   WorldConstraint.cpp, WorldManifoldCache.cpp  the constraint solver's step and its manifold reuse
 //   WorldInternal.hpp  flag bits shared by these files
 #include "simulation/World.hpp"
+#include "simulation/WorldInternal.hpp"
 
 #include "core/Error.hpp"
 #include "contact/FdemPotential.hpp"

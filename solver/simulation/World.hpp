@@ -109,7 +109,9 @@ inline constexpr double kMinConstraintStep = 1.0e-6;
 /// ours, chosen from the measurements in docs/benchmarks.md ("The constraint solver").
 struct ConstraintSettings {
   double timeStep = 1.0 / 200.0;      ///< step with time_step: auto (unit: s); divides the storm record interval 0.05 s
-  int substeps = 4;                   ///< substeps per step (unit: -)
+  /// Substeps per step (unit: -): 3 since session 20, measured against 2 and 4 in docs/fidelity.md
+  /// ("Substeps of the constraint solver").
+  int substeps = 3;
   /// Damping ratio of each contact point's spring; the spring itself is the penalty law's E_p A / L
   /// (the materials' penalty modulus), capped at a quarter of the substep rate (unit: -).
   double dampingRatio = 10.0;
@@ -398,15 +400,30 @@ private:
     return (std::uint64_t{key.first} << 32) | key.second;
   }
   std::uint64_t manifoldCacheStamp_ = 0; ///< counts cacheManifolds calls (CachedManifold::stamp)
+  /// The keys of the last cacheManifolds call in its order, with their entries: the next step's
+  /// candidate pairs come in the same order and are mostly the same, so a walk along them finds
+  /// most entries without hashing (findCachedManifolds). Cleared with the cache.
+  std::vector<std::uint64_t> walkKeys_;
+  std::vector<CachedManifold*> walkEntries_;
+  /// Empty the cache (and its walk).
+  void clearManifoldCache();
+  /// entries[w]: keys[w]'s cache entry, or null.
+  void findCachedManifolds(const std::vector<contact::BodyPair>& keys, std::vector<CachedManifold*>& entries);
   /// A's pose in B's frame (B static: the world).
   void relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const;
   /// m.key's cached patches moved to the current poses, if the pair has moved less than the reuse
   /// distance r since they were found and no sample left out then can touch in this step: `travel`
   /// (m, what the pair may close in it) plus r stays below the margin they were found with.
-  /// turnedCos = cos(r): the turn test (computed once per narrow phase by the caller).
-  bool reuseManifold(PairManifold& m, double travel, double turnedCos) const;
+  /// turnedCos = cos(r): the turn test (computed once per narrow phase by the caller). `entry`:
+  /// the pair's cache entry (findCachedManifolds), not null.
+  bool reuseManifold(PairManifold& m, double travel, double turnedCos, const CachedManifold& entry) const;
   /// The cache after a narrow phase: reused pairs keep their entries, the others' are made anew.
-  void cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused);
+  /// entries[w]: pair w's entry as findCachedManifolds found it (null: none).
+  void cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused,
+                      const std::vector<CachedManifold*>& entries);
+  /// The constraint step's manifolds, a member so that their patch storage is reused from step to
+  /// step (World.cpp, where PairManifold is complete, destroys it).
+  std::vector<PairManifold> stepManifolds_;
   [[nodiscard]] std::vector<double> saveManifoldCache() const;
   void restoreManifoldCache(const std::vector<double>& flat);
   void collideConstraint(std::vector<PairManifold>& manifolds);
@@ -446,7 +463,7 @@ private:
   // Constraint solver state (WorldConstraint.cpp): solver body 0 is the ground.
   std::vector<contact::SolverBody> solverBodies_;
   std::vector<std::int32_t> solverIndex_;          ///< body -> solver body (0: ground)
-  std::vector<contact::ContactConstraint> constraints_;
+  contact::ConstraintSet constraints_;
   std::vector<std::uint32_t> constraintPair_;      ///< constraint -> manifold index
   std::size_t warmStarted_ = 0;                    ///< points of this step's constraints that found their impulses
   std::size_t reusedPairs_ = 0;                    ///< pairs of this step that kept their patches

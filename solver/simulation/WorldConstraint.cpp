@@ -66,7 +66,7 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
   std::vector<contact::BodyPair> keys;
   candidatePairs(keys);
   stepLists_ = sampleListsFor(keys);
-  manifolds.assign(keys.size(), PairManifold{});
+  manifolds.resize(keys.size()); // each is reset below, keeping its patches' storage
   const ConstraintSettings& cs = settings_.constraint;
   contact::ReductionSettings reduction;
   reduction.patchAngle = cs.patchAngle;
@@ -89,12 +89,22 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
   const bool reuse = settings_.constraint.reuseDistance > 0.0;
   const double turnedCos = std::cos(settings_.constraint.reuseDistance);
   std::vector<char> reused(keys.size(), 0);
+  std::vector<CachedManifold*> entries;
+  if (reuse) {
+    findCachedManifolds(keys, entries);
+  } else {
+    entries.assign(keys.size(), nullptr);
+  }
 #pragma omp parallel for schedule(dynamic, 1) if (keys.size() >= 16)
   for (std::size_t w = 0; w < keys.size(); ++w) {
     PairManifold& m = manifolds[w];
     m.key = keys[w];
+    m.patches.clear();
+    m.maxOverlap = 0.0;
+    m.margin = 0.0;
     const BodyId a = m.key.first;
-    if (reuse && reuseManifold(m, travel(a, (m.key.second & kStaticBits) != 0 ? a : m.key.second), turnedCos)) {
+    if (entries[w] != nullptr &&
+        reuseManifold(m, travel(a, (m.key.second & kStaticBits) != 0 ? a : m.key.second), turnedCos, *entries[w])) {
       reused[w] = 1;
       continue;
     }
@@ -125,9 +135,9 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
   }
   reusedPairs_ = static_cast<std::size_t>(std::count(reused.begin(), reused.end(), char{1}));
   if (reuse) {
-    cacheManifolds(manifolds, reused);
+    cacheManifolds(manifolds, reused, entries);
   } else {
-    manifoldCache_.clear();
+    clearManifoldCache();
   }
 }
 
@@ -198,8 +208,11 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
       c.restitution = std::min(ma.restitution, mb.restitution);
       c.count = patch.count;
       c.dampingRatio = cs.dampingRatio;
+      c.first = static_cast<std::uint32_t>(constraints_.points.size());
+      constraints_.points.resize(constraints_.points.size() + static_cast<std::size_t>(patch.count));
+      const std::span<contact::ConstraintPoint> points = constraints_.pointsOf(c);
       for (int k = 0; k < patch.count; ++k) {
-        contact::ConstraintPoint& p = c.points[k];
+        contact::ConstraintPoint& p = points[static_cast<std::size_t>(k)];
         p.key = patch.keys[k];
         p.normal = patch.normals[k];
         contact::tangentBasis(p.normal, p.tangent1, p.tangent2);
@@ -226,8 +239,8 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
           ++warmStarted;
         }
       }
-      contact::prepareConstraint(c, solverBodies_, h);
-      constraints_.push_back(c);
+      contact::prepareConstraint(c, points, solverBodies_, h);
+      constraints_.patches.push_back(c);
       constraintPair_.push_back(static_cast<std::uint32_t>(i));
     }
   }
@@ -252,7 +265,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
   auto torques = bodies_.torques();
   PairHistories next;
   std::size_t c = 0;
-  while (c < constraints_.size()) {
+  while (c < constraints_.patches.size()) {
     const std::uint32_t pairIndex = constraintPair_[c];
     const contact::BodyPair key = manifolds[pairIndex].key;
     const BodyId a = key.first;
@@ -262,10 +275,9 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
     record.bodyA = a;
     record.bodyB = isStatic ? -1 : static_cast<std::int64_t>(key.second);
     Vec3 weighted = Vec3::Zero();
-    for (; c < constraints_.size() && constraintPair_[c] == pairIndex; ++c) {
-      const contact::ContactConstraint& k = constraints_[c];
-      for (int j = 0; j < k.count; ++j) {
-        const contact::ConstraintPoint& p = k.points[j];
+    for (; c < constraints_.patches.size() && constraintPair_[c] == pairIndex; ++c) {
+      const contact::ContactConstraint& k = constraints_.patches[c];
+      for (const contact::ConstraintPoint& p : constraints_.pointsOf(k)) {
         contact::PointHistory ph;
         ph.sliding = p.slides;
         // The friction anchor's slip (ContactSolver.hpp), in the checkpoint's contact_stretch.
@@ -316,7 +328,7 @@ void World::stepConstraint() {
   clock = profile_.add(Stage::Loads, clock);
   updateBoxes();
   clock = profile_.add(Stage::Boxes, clock);
-  std::vector<PairManifold> manifolds;
+  std::vector<PairManifold>& manifolds = stepManifolds_;
   collideConstraint(manifolds);
   clock = profile_.add(Stage::NarrowPhase, clock);
 

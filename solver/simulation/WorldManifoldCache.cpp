@@ -37,12 +37,31 @@ void World::relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const {
   q = qb.conjugate() * bodies_.orientation(a);
 }
 
-bool World::reuseManifold(PairManifold& m, double travel, double turnedCos) const {
-  const auto it = manifoldCache_.find(pairKey(m.key));
-  if (it == manifoldCache_.end()) {
-    return false;
+void World::clearManifoldCache() {
+  manifoldCache_.clear();
+  walkKeys_.clear();
+  walkEntries_.clear();
+}
+
+void World::findCachedManifolds(const std::vector<contact::BodyPair>& keys, std::vector<CachedManifold*>& entries) {
+  entries.assign(keys.size(), nullptr);
+  // The candidate pairs come as the broad phase's, sorted, then the plane pairs, sorted: so both
+  // lists are sorted by (plane pair, key), and one walk along the last step's finds the pairs that
+  // were there. A pair it does not find (new, or an order this walk does not expect) is hashed.
+  const auto rank = [](std::uint64_t k) { return std::pair{(k & detail::kPlaneBit) != 0, k}; };
+  std::size_t j = 0;
+  for (std::size_t w = 0; w < keys.size(); ++w) {
+    const std::uint64_t k = pairKey(keys[w]);
+    while (j < walkKeys_.size() && rank(walkKeys_[j]) < rank(k)) ++j;
+    if (j < walkKeys_.size() && walkKeys_[j] == k) {
+      entries[w] = walkEntries_[j++];
+    } else if (const auto it = manifoldCache_.find(k); it != manifoldCache_.end()) {
+      entries[w] = &it->second;
+    }
   }
-  const CachedManifold& cm = it->second;
+}
+
+bool World::reuseManifold(PairManifold& m, double travel, double turnedCos, const CachedManifold& cm) const {
   const BodyId a = m.key.first;
   const double limit = settings_.constraint.reuseDistance * bodyDn(a);
   Vec3 p;
@@ -80,18 +99,25 @@ bool World::reuseManifold(PairManifold& m, double travel, double turnedCos) cons
   return true;
 }
 
-void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused) {
+void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std::vector<char>& reused,
+                           const std::vector<CachedManifold*>& entries) {
   // In place: a reused entry keeps the pose of its full narrow phase, a new narrow phase
   // overwrites its pair's entry (keeping its vectors' storage), and the entries of pairs that are
   // no longer candidates go.
   const std::uint64_t stamp = ++manifoldCacheStamp_; // never 0, the stamp of a restored entry
+  // The walk of the next step: these keys and entries (their nodes stay where they are while
+  // other entries come and go).
+  walkKeys_.resize(manifolds.size());
+  walkEntries_.assign(entries.begin(), entries.end());
   for (std::size_t w = 0; w < manifolds.size(); ++w) {
     const PairManifold& m = manifolds[w];
+    walkKeys_[w] = pairKey(m.key);
     if (reused[w] != 0) {
-      manifoldCache_.at(pairKey(m.key)).stamp = stamp;
+      entries[w]->stamp = stamp;
       continue;
     }
-    CachedManifold& cm = manifoldCache_[pairKey(m.key)];
+    CachedManifold& cm = entries[w] != nullptr ? *entries[w] : manifoldCache_[pairKey(m.key)];
+    walkEntries_[w] = &cm;
     cm.stamp = stamp;
     relativePose(m.key, cm.relP, cm.relQ);
     const bool isStatic = (m.key.second & kStaticBits) != 0;
@@ -155,7 +181,7 @@ std::vector<double> World::saveManifoldCache() const {
 }
 
 void World::restoreManifoldCache(const std::vector<double>& flat) {
-  manifoldCache_.clear();
+  clearManifoldCache();
   if (flat.empty()) {
     return;
   }

@@ -138,7 +138,7 @@ void World::restoreState(const WorldState& s) {
   if (settings_.solver == ContactSolverKind::Constraint) {
     restoreManifoldCache(s.manifoldCache);
   } else {
-    manifoldCache_.clear();
+    clearManifoldCache();
   }
   forcesReady_ = s.forcesReady;
   boxesValid_ = false;

@@ -18,13 +18,12 @@ struct Stencil {
   int corners = 0;
 };
 
-/// Cell index and fraction along one uniform axis; false when `c` is more than half a spacing
-/// outside the outermost centres. Within that half spacing the fraction is clamped so the edge
-/// value is held.
-bool locate(const std::vector<double>& axis, double c, std::size_t& index, double& fraction) {
-  const std::size_t n = axis.size();
-  const double spacing = axis[1] - axis[0];
-  const double f = (c - axis.front()) / spacing;
+/// Cell index and fraction along one uniform axis (StormSampler::Axis); false when `c` is more
+/// than half a spacing outside the outermost centres. Within that half spacing the fraction is
+/// clamped so the edge value is held.
+bool locate(const StormSampler::Axis& axis, double c, std::size_t& index, double& fraction) {
+  const std::size_t n = axis.centres.size();
+  const double f = (c - axis.centres.front()) * axis.inverseSpacing;
   // Written as a negated range test so a NaN coordinate is outside too.
   if (!(f >= -0.5 && f <= static_cast<double>(n - 1) + 0.5)) {
     return false;
@@ -33,7 +32,7 @@ bool locate(const std::vector<double>& axis, double c, std::size_t& index, doubl
   index = static_cast<std::size_t>(cell);
   // The fraction from the stored centres (not from f) keeps a linear field exact on grids whose
   // centres are uniform only to round-off.
-  fraction = std::clamp((c - axis[index]) / (axis[index + 1] - axis[index]), 0.0, 1.0);
+  fraction = std::clamp((c - axis.centres[index]) * axis.inverseWidth[index], 0.0, 1.0);
   return true;
 }
 
@@ -58,15 +57,25 @@ bool stencilAt(const StormHeader& h, std::size_t ix, std::size_t iz, double tx, 
   if (s.corners == 0) {
     return false;
   }
+  const double inverse = 1.0 / total;
   for (int c = 0; c < s.corners; ++c) {
-    s.weight[c] /= total;
+    s.weight[c] *= inverse;
   }
   return true;
 }
 
 } // namespace
 
-StormSampler::StormSampler(const StormReader& reader) : reader_(reader) {
+StormSampler::Axis::Axis(const std::vector<double>& c) : centres(c) {
+  inverseSpacing = 1.0 / (c[1] - c[0]);
+  inverseWidth.resize(c.size() - 1);
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) {
+    inverseWidth[i] = 1.0 / (c[i + 1] - c[i]);
+  }
+}
+
+StormSampler::StormSampler(const StormReader& reader)
+    : reader_(reader), axisX_(reader.header().x), axisZ_(reader.header().z) {
   const auto& h = reader.header();
   const auto& times = reader.times();
   const std::size_t nx = h.nx();
@@ -128,27 +137,40 @@ void StormSampler::setTime(double t) {
   lower_ = lower;
   weight_ = (t - times[lower]) / (times[upper] - times[lower]);
   time_ = t;
+  blendRecords();
 }
 
-FlowSample StormSampler::voxel(std::size_t i, bool rate) const {
-  FlowSample v;
+void StormSampler::blendRecords() {
+  const std::size_t n = a_.p.size();
   const bool hasV = reader_.header().hasVelocityY;
-  if (rate) {
-    const auto& times = reader_.times();
-    const double inv = 1.0 / (times[lower_ + 1] - times[lower_]);
-    v.p = (b_.p[i] - a_.p[i]) * inv;
-    v.u = (b_.u[i] - a_.u[i]) * inv;
-    v.v = hasV ? (b_.v[i] - a_.v[i]) * inv : 0.0;
-    v.w = (b_.w[i] - a_.w[i]) * inv;
-    v.alpha = (b_.alpha[i] - a_.alpha[i]) * inv;
-  } else {
-    const double wa = 1.0 - weight_, wb = weight_;
+  const auto& times = reader_.times();
+  const double inv = 1.0 / (times[lower_ + 1] - times[lower_]);
+  const double wa = 1.0 - weight_, wb = weight_;
+  blended_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    VoxelFlow& v = blended_[i].now;
     v.p = wa * a_.p[i] + wb * b_.p[i];
     v.u = wa * a_.u[i] + wb * b_.u[i];
     v.v = hasV ? wa * a_.v[i] + wb * b_.v[i] : 0.0;
     v.w = wa * a_.w[i] + wb * b_.w[i];
     v.alpha = wa * a_.alpha[i] + wb * b_.alpha[i];
+    VoxelFlow& r = blended_[i].slope;
+    r.p = (b_.p[i] - a_.p[i]) * inv;
+    r.u = (b_.u[i] - a_.u[i]) * inv;
+    r.v = hasV ? (b_.v[i] - a_.v[i]) * inv : 0.0;
+    r.w = (b_.w[i] - a_.w[i]) * inv;
+    r.alpha = (b_.alpha[i] - a_.alpha[i]) * inv;
   }
+}
+
+FlowSample StormSampler::voxel(std::size_t i, bool rate) const {
+  const VoxelFlow& f = rate ? blended_[i].slope : blended_[i].now;
+  FlowSample v;
+  v.p = f.p;
+  v.u = f.u;
+  v.v = f.v;
+  v.w = f.w;
+  v.alpha = f.alpha;
   return v;
 }
 
@@ -167,8 +189,7 @@ FlowSample StormSampler::rate(double x, double z) const { return interpolate(x, 
 FlowSample StormSampler::interpolate(double x, double z, bool rate) const {
   std::size_t ix = 0, iz = 0;
   double tx = 0.0, tz = 0.0;
-  const StormHeader& h = reader_.header();
-  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
+  if (!locate(axisX_, x, ix, tx) || !locate(axisZ_, z, iz, tz)) {
     return {};
   }
   return interpolateCell(ix, iz, tx, tz, rate);
@@ -187,77 +208,104 @@ FlowSample StormSampler::interpolateCell(std::size_t ix, std::size_t iz, double 
   return out;
 }
 
-FlowSample StormSampler::sampleExtended(double x, double z) const { return extended(x, z, false); }
+FlowSample StormSampler::sampleExtended(double x, double z) const { return extended(locateExtended(x, z), false); }
 
-FlowSample StormSampler::rateExtended(double x, double z) const { return extended(x, z, true); }
+FlowSample StormSampler::rateExtended(double x, double z) const { return extended(locateExtended(x, z), true); }
 
-FlowSample StormSampler::extended(double x, double z, bool rate) const {
+StormSampler::Located StormSampler::locateExtended(double x, double z) const {
   const auto& h = reader_.header();
+  Located at;
   if (std::isnan(x) || std::isnan(z)) {
-    return {};
+    return at;
   }
   // Beyond the outermost columns the edge column's flow; beyond the outermost rows the edge row's,
-  // continued hydrostatically below.
+  // continued hydrostatically (extended()).
   const double cx = std::clamp(x, h.x.front(), h.x.back());
   const double cz = std::clamp(z, h.z.front(), h.z.back());
-  const auto at = [&](bool r) { return hasGaps_ ? withFill(cx, cz, r) : interpolate(cx, cz, r); };
-  FlowSample out = at(rate);
-  if (cz == z) {
+  at.rowOffset = z - cz;
+  std::size_t ix = 0, iz = 0;
+  double tx = 0.0, tz = 0.0;
+  if (!locate(axisX_, cx, ix, tx) || !locate(axisZ_, cz, iz, tz)) {
+    return at; // cannot happen for a clamped point; kept as sample() would answer
+  }
+  const std::size_t nx = h.nx();
+  const std::size_t base = iz * nx + ix;
+  const std::size_t voxels[4] = {base, base + 1, base + nx, base + nx + 1};
+  const double weights[4] = {(1.0 - tx) * (1.0 - tz), tx * (1.0 - tz), (1.0 - tx) * tz, tx * tz};
+  bool allData = true;
+  for (int c = 0; c < 4; ++c) {
+    allData = allData && (!(weights[c] > 0.0) || h.samples[voxels[c]] > 0);
+  }
+  if (allData) {
+    // The file's values, bit for bit (as sample / rate): corners without weight dropped, the
+    // rest renormalised.
+    Stencil s;
+    if (!stencilAt(h, ix, iz, tx, tz, s)) {
+      return at;
+    }
+    at.corners = s.corners;
+    for (int c = 0; c < s.corners; ++c) {
+      at.voxel[c] = s.voxel[c];
+      at.weight[c] = s.weight[c];
+    }
+    at.valid = true;
+    return at;
+  }
+  // Gap fill at the corners without data (their weights kept, not renormalised).
+  for (int c = 0; c < 4; ++c) {
+    if (!(weights[c] > 0.0)) {
+      continue;
+    }
+    at.voxel[at.corners] = voxels[c];
+    at.weight[at.corners] = weights[c];
+    at.fill[at.corners] = h.samples[voxels[c]] == 0;
+    at.filled = at.filled || at.fill[at.corners];
+    ++at.corners;
+  }
+  at.valid = true;
+  return at;
+}
+
+FlowSample StormSampler::cornerSum(const Located& at, bool rate) const {
+  FlowSample out;
+  if (!at.valid) {
     return out;
   }
+  const std::size_t nx = reader_.header().nx();
+  for (int c = 0; c < at.corners; ++c) {
+    const std::size_t i = at.voxel[c];
+    accumulate(out, at.weight[c], at.fill[c] ? fill(i % nx, i / nx, rate) : voxel(i, rate));
+  }
+  out.valid = true;
+  out.filled = at.filled;
+  return out;
+}
+
+FlowSample StormSampler::extended(const Located& at, bool rate) const {
+  FlowSample out = cornerSum(at, rate);
+  if (!at.valid || at.rowOffset == 0.0) {
+    return out;
+  }
+  const auto& h = reader_.header();
   const double rhoG = h.waterDensity * h.gravity;
-  if (z < cz) {
-    // Below the bottom row: deeper by (cz - z) in the same water; the added pressure does not change in time.
+  if (at.rowOffset < 0.0) {
+    // Below the bottom row: deeper by -rowOffset in the same water; the added pressure does not
+    // change in time.
     if (!rate) {
-      out.p += rhoG * (cz - z);
+      out.p += rhoG * -at.rowOffset;
     }
     return out;
   }
   // Above the top row: the pressure falls by rho g per metre; where it is gone the point is in air.
-  const FlowSample value = rate ? at(false) : out;
-  if (value.p - rhoG * (z - cz) <= 0.0) {
+  const FlowSample value = rate ? cornerSum(at, false) : out;
+  if (value.p - rhoG * at.rowOffset <= 0.0) {
     FlowSample air;
     air.valid = true;
     air.filled = out.filled;
     return air;
   }
   if (!rate) {
-    out.p -= rhoG * (z - cz);
-  }
-  return out;
-}
-
-FlowSample StormSampler::withFill(double x, double z, bool rate) const {
-  const auto& h = reader_.header();
-  std::size_t ix = 0, iz = 0;
-  double tx = 0.0, tz = 0.0;
-  if (!locate(h.x, x, ix, tx) || !locate(h.z, z, iz, tz)) {
-    return {};
-  }
-  const std::size_t nx = h.nx();
-  const std::size_t cx[4] = {ix, ix + 1, ix, ix + 1};
-  const std::size_t cz[4] = {iz, iz, iz + 1, iz + 1};
-  const double weights[4] = {(1.0 - tx) * (1.0 - tz), tx * (1.0 - tz), (1.0 - tx) * tz, tx * tz};
-  bool allData = true;
-  for (int c = 0; c < 4; ++c) {
-    allData = allData && (!(weights[c] > 0.0) || h.samples[cz[c] * nx + cx[c]] > 0);
-  }
-  if (allData) {
-    return interpolateCell(ix, iz, tx, tz, rate); // the file's values, bit for bit (as sample / rate)
-  }
-  FlowSample out;
-  out.valid = true;
-  for (int c = 0; c < 4; ++c) {
-    if (!(weights[c] > 0.0)) {
-      continue;
-    }
-    const std::size_t i = cz[c] * nx + cx[c];
-    if (h.samples[i] > 0) {
-      accumulate(out, weights[c], voxel(i, rate));
-    } else {
-      accumulate(out, weights[c], fill(cx[c], cz[c], rate));
-      out.filled = true;
-    }
+    out.p -= rhoG * at.rowOffset;
   }
   return out;
 }
@@ -286,7 +334,7 @@ FlowSample StormSampler::fill(std::size_t ix, std::size_t iz, bool rate) const {
   const auto& levels = dataLevels_[ix];
   const auto wet = [&](std::size_t k) {
     const std::size_t i = k * nx + ix;
-    return (1.0 - weight_) * a_.alpha[i] + weight_ * b_.alpha[i] >= 0.5;
+    return blended_[i].now.alpha >= 0.5;
   };
   // Two cursors walking away from iz, down (lo - 1) and up (hi), the nearer one first.
   std::size_t hi = static_cast<std::size_t>(std::lower_bound(levels.begin(), levels.end(), iz) - levels.begin());

@@ -85,6 +85,23 @@ public:
   /// rho g d(eta_i)/dt for p (alpha: 0); beyond the rows the edge row's rates (0 where the point
   /// is in air).
   [[nodiscard]] FlowSample rateExtended(double x, double z) const;
+
+  /// Where sampleExtended() and rateExtended() read for one point: its (up to four) corners with
+  /// their weights and which of them take the gap fill, and how far the point lies beyond the
+  /// outermost rows. Locate once, then ask for the value and, where needed, the rate: the same
+  /// numbers as the two calls, without finding the cell twice.
+  struct Located {
+    bool valid = false;          ///< false only for a NaN coordinate
+    bool filled = false;         ///< some weight falls on the gap fill
+    int corners = 0;
+    std::size_t voxel[4] = {0, 0, 0, 0};
+    double weight[4] = {0, 0, 0, 0};
+    bool fill[4] = {false, false, false, false};
+    double rowOffset = 0.0;      ///< z minus the z clamped to the outermost rows (unit: m)
+  };
+  [[nodiscard]] Located locateExtended(double x, double z) const;
+  [[nodiscard]] FlowSample sampleExtended(const Located& at) const { return extended(at, false); }
+  [[nodiscard]] FlowSample rateExtended(const Located& at) const { return extended(at, true); }
   /// Does the file have voxels without data (samples = 0)? (Then the gap fill can apply.)
   [[nodiscard]] bool hasGaps() const { return hasGaps_; }
   /// Free-surface elevation and wave phase at x, current time. Outside the x range: the edge column.
@@ -92,12 +109,30 @@ public:
 
   [[nodiscard]] const StormReader& reader() const { return reader_; }
 
+  /// One axis of the grid's voxel centres with the reciprocals a lookup multiplies by.
+  struct Axis {
+    explicit Axis(const std::vector<double>& centres);
+    std::vector<double> centres;
+    double inverseSpacing = 0.0;       ///< 1 / (c_1 - c_0) (unit: 1/m)
+    std::vector<double> inverseWidth;  ///< 1 / (c_(i+1) - c_i) per cell (unit: 1/m)
+  };
+
 private:
   const StormReader& reader_;
+  Axis axisX_, axisZ_;
   double time_ = 0.0;
   std::size_t lower_ = 0;      ///< index of the record at or before time_
   double weight_ = 0.0;        ///< weight of record lower_ + 1 (unit: -)
   StormRecord a_, b_;          ///< records lower_ and lower_ + 1
+  /// The file's values at every voxel at time_ (blended from a_ and b_) and their time derivative,
+  /// computed once per setTime() so that a sample reads one voxel's values from one place.
+  struct VoxelFlow {
+    double p = 0.0, u = 0.0, v = 0.0, w = 0.0, alpha = 0.0;
+  };
+  struct VoxelFlows {
+    VoxelFlow now, slope;
+  };
+  std::vector<VoxelFlows> blended_;
   std::size_t heldA_ = SIZE_MAX, heldB_ = SIZE_MAX;
   /// Per x column, the times of the zero crossings of eta (increasing).
   std::vector<std::vector<double>> crossings_;
@@ -107,16 +142,18 @@ private:
 
   /// The gap fill at the centre of voxel (ix, iz); `rate`: its time derivative instead.
   [[nodiscard]] FlowSample fill(std::size_t ix, std::size_t iz, bool rate) const;
-  /// sampleExtended() (rate = false) and rateExtended().
-  [[nodiscard]] FlowSample extended(double x, double z, bool rate) const;
-  /// Bilinear with the gap fill at the corners without data, (x, z) inside the outermost centres.
-  [[nodiscard]] FlowSample withFill(double x, double z, bool rate) const;
+  /// sampleExtended() (rate = false) and rateExtended() at a located point.
+  [[nodiscard]] FlowSample extended(const Located& at, bool rate) const;
+  /// The located corners' bilinear sum (fill corners: the gap fill at their centre).
+  [[nodiscard]] FlowSample cornerSum(const Located& at, bool rate) const;
   /// sample() (rate = false) and rate().
   [[nodiscard]] FlowSample interpolate(double x, double z, bool rate) const;
   /// interpolate() in the cell (ix, iz) at fractions (tx, tz), as locate() found them.
   [[nodiscard]] FlowSample interpolateCell(std::size_t ix, std::size_t iz, double tx, double tz, bool rate) const;
   /// The file's values at voxel i, current time (rate: their time derivative).
   [[nodiscard]] FlowSample voxel(std::size_t i, bool rate) const;
+  /// Fill blended_ for the held records and weight_.
+  void blendRecords();
   static void accumulate(FlowSample& out, double weight, const FlowSample& v);
 };
 

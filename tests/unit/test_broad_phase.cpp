@@ -75,6 +75,47 @@ TEST(BroadPhase, MatchesBruteForceWhileBoxesMove) {
   EXPECT_LE(broad.restingBuilds(), 10u) << "and only then";
 }
 
+TEST(BroadPhase, KeptNeighbourListsFindThePairsOfCreepingBoxes) {
+  // Units rocking in place on a bed of rocks: each moving box keeps the resting boxes near it and
+  // searches the grid again only when it leaves its grown box (5 % of its size). Over 300 steps of
+  // drift of up to 1 % of a box size per step, in one direction for some boxes (they leave their
+  // grown boxes every few steps) and back and forth for others, the pairs are the brute force's at
+  // every step, and most steps use the kept lists.
+  std::mt19937_64 rng(11);
+  auto boxes = randomBoxes(rng, 600, 30.0, 1.0);
+  std::vector<std::uint8_t> active(boxes.size(), 0);
+  for (std::size_t i = 0; i < active.size(); i += 4) {
+    active[i] = 1; // a quarter moving, the rest resting (rocks)
+  }
+  std::vector<Vec3> drift(boxes.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    drift[i] = Vec3((rng() >> 11) * 0x1.0p-53 - 0.5, (rng() >> 11) * 0x1.0p-53 - 0.5, 0.0) * 0.02;
+  }
+  BroadPhase broad;
+  std::vector<BodyPair> pairs;
+  std::size_t total = 0, activeQueries = 0;
+  const std::size_t steps = 300;
+  for (std::size_t step = 0; step < steps; ++step) {
+    broad.findPairs(boxes, active, pairs);
+    ASSERT_EQ(pairs, bruteForcePairs(boxes, active)) << "step " << step;
+    total += pairs.size();
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (!active[i]) continue;
+      ++activeQueries;
+      // Odd boxes walk on; even ones rock back and forth with a period of 20 steps.
+      const Vec3 d = (i % 8 == 4) ? drift[i] : Vec3(drift[i] * ((step / 10) % 2 == 0 ? 1.0 : -1.0));
+      boxes[i].min += d;
+      boxes[i].max += d;
+    }
+  }
+  EXPECT_GT(total, 2000u) << "the scene must actually have overlaps to test anything";
+  RecordProperty("neighbour_searches", std::to_string(broad.neighbourSearches()));
+  RecordProperty("active_queries", std::to_string(activeQueries));
+  EXPECT_EQ(broad.restingBuilds(), 1u);
+  EXPECT_LT(broad.neighbourSearches(), activeQueries / 3) << "the kept lists serve most queries";
+  EXPECT_GT(broad.neighbourSearches(), 150u + activeQueries / steps) << "the walking boxes search again";
+}
+
 TEST(BroadPhase, InactivePairsAndEmptyBoxesAreSkipped) {
   std::vector<Box3> boxes(3);
   for (auto& b : boxes) {
