@@ -258,8 +258,8 @@ StormSampler::Located StormSampler::locateExtended(double x, double z) const {
     }
     at.voxel[at.corners] = voxels[c];
     at.weight[at.corners] = weights[c];
-    at.fill[at.corners] = h.samples[voxels[c]] == 0;
-    at.filled = at.filled || at.fill[at.corners];
+    at.gapFill[at.corners] = h.samples[voxels[c]] == 0;
+    at.filled = at.filled || at.gapFill[at.corners];
     ++at.corners;
   }
   at.valid = true;
@@ -274,7 +274,7 @@ FlowSample StormSampler::cornerSum(const Located& at, bool rate) const {
   const std::size_t nx = reader_.header().nx();
   for (int c = 0; c < at.corners; ++c) {
     const std::size_t i = at.voxel[c];
-    accumulate(out, at.weight[c], at.fill[c] ? fill(i % nx, i / nx, rate) : voxel(i, rate));
+    accumulate(out, at.weight[c], at.gapFill[c] ? fill(i % nx, i / nx, rate) : voxel(i, rate));
   }
   out.valid = true;
   out.filled = at.filled;

@@ -96,7 +96,7 @@ public:
     int corners = 0;
     std::size_t voxel[4] = {0, 0, 0, 0};
     double weight[4] = {0, 0, 0, 0};
-    bool fill[4] = {false, false, false, false};
+    bool gapFill[4] = {false, false, false, false}; ///< the corner takes the gap fill (no data)
     double rowOffset = 0.0;      ///< z minus the z clamped to the outermost rows (unit: m)
   };
   [[nodiscard]] Located locateExtended(double x, double z) const;
