@@ -483,17 +483,18 @@ void World::guardOverlap(const contact::BodyPair& key, double maxOverlap, double
   const BodyId other = key.second & ~kStaticBits;
   double dn = bodyDn(a);
   double inner = shapes_[bodyShape_[a]]->innerDepth * bodyScale_[a];
-  std::string otherName;
   if ((key.second & kStaticBits) == 0) {
     dn = std::min(dn, bodyDn(other));
     inner = std::min(inner, shapes_[bodyShape_[other]]->innerDepth * bodyScale_[other]);
-    otherName = bodies_.describe(other);
-  } else if ((key.second & kPlaneBit) != 0) {
-    otherName = "plane '" + planes_[other].name + "'";
-  } else {
+  } else if ((key.second & kPlaneBit) == 0) {
     inner = std::min(inner, convex_[other].innerDepth);
-    otherName = "static piece '" + convex_[other].name + "'";
   }
+  // The other's name, only for a message (this runs for every candidate pair at every step).
+  const auto otherName = [&]() -> std::string {
+    if ((key.second & kStaticBits) == 0) return bodies_.describe(other);
+    if ((key.second & kPlaneBit) != 0) return "plane '" + planes_[other].name + "'";
+    return "static piece '" + convex_[other].name + "'";
+  };
   const double overlapLimit = settings_.maxOverlapPerDn * dn;
   const double tunnelLimit = settings_.maxOverlapPerInnerDepth * inner;
   // fdem: the element potentials peak at the surface elements' centroids (median depth
@@ -504,7 +505,7 @@ void World::guardOverlap(const contact::BodyPair& key, double maxOverlap, double
         "t = {:.6g} s: {} and {} overlap by {:.4g} m, {} x the median depth {:.4g} m at which the fdem potential "
         "of their surface elements peaks: deeper, the push fades; raise the penalty modulus, lower the speed, or "
         "use fewer, larger contact elements (contact.fdem.elements_per_unit)",
-        time_, bodies_.describe(a), otherName, maxOverlap, kFdemReachFraction, fdemReach));
+        time_, bodies_.describe(a), otherName(), maxOverlap, kFdemReachFraction, fdemReach));
   }
   if (maxOverlap > std::min(overlapLimit, tunnelLimit)) {
     if (tunnelLimit < overlapLimit) {
@@ -512,12 +513,12 @@ void World::guardOverlap(const contact::BodyPair& key, double maxOverlap, double
           "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x the inner depth {:.4g} m of the thinner "
           "part: it would pass through it (tunnel); make thin parts thicker, lower the speed, or raise the "
           "penalty modulus",
-          time_, bodies_.describe(a), otherName, maxOverlap, settings_.maxOverlapPerInnerDepth, inner));
+          time_, bodies_.describe(a), otherName(), maxOverlap, settings_.maxOverlapPerInnerDepth, inner));
     }
     throw SimulationError(fmt::format(
         "t = {:.6g} s: {} and {} overlap by {:.4g} m, more than {} x Dn = {:.4g} m; the contact cannot hold: "
         "lower the time step, raise the penalty modulus, or check the initial positions",
-        time_, bodies_.describe(a), otherName, maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
+        time_, bodies_.describe(a), otherName(), maxOverlap, settings_.maxOverlapPerDn, overlapLimit));
   }
 }
 
