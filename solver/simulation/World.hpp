@@ -428,6 +428,10 @@ private:
   void restoreManifoldCache(const std::vector<double>& flat);
   void collideConstraint(std::vector<PairManifold>& manifolds);
   void buildConstraints(std::vector<PairManifold>& manifolds, double h);
+  /// One pair's constraints into constraints_.patches from patchAt and .points from pointAt (the
+  /// slots buildConstraints gave it); returns how many of its points were warm-started.
+  std::uint32_t buildPairConstraints(const PairManifold& m, std::uint32_t pairIndex, std::size_t patchAt,
+                                     std::size_t pointAt, double h);
   void storeConstraintResults(const std::vector<PairManifold>& manifolds, double dt);
   void syncSolverBodies(bool inertia);
   void writeSolverVelocities();

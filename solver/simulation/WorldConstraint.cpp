@@ -167,84 +167,107 @@ void World::writeSolverVelocities() {
 }
 
 void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
-  const ConstraintSettings& cs = settings_.constraint;
-  constraints_.clear();
-  constraintPair_.clear();
-  std::size_t warmStarted = 0;
+  // Serial: the guard rails (they throw, naming the pair) and where each pair's patches and points
+  // go; then every pair fills its own slots, in parallel (any thread count gives the same bits).
+  std::vector<std::size_t> patchStart(manifolds.size() + 1, 0), pointStart(manifolds.size() + 1, 0);
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
-    PairManifold& m = manifolds[i];
+    const PairManifold& m = manifolds[i];
     guardOverlap(m.key, m.maxOverlap, std::numeric_limits<double>::infinity());
-    if (m.patches.empty()) {
-      continue;
-    }
-    const History* previous = findPairHistory(m.key);
-    const BodyId a = m.key.first;
-    const bool isStatic = (m.key.second & kStaticBits) != 0;
-    MaterialId materialB = 0;
-    if (isStatic) {
-      const std::uint32_t index = m.key.second & ~kStaticBits;
-      materialB = (m.key.second & kPlaneBit) != 0 ? planes_[index].material : convex_[index].material;
-    } else {
-      materialB = bodyMaterial_[m.key.second];
-    }
-    const Material& ma = materials_[bodyMaterial_[a]];
-    const Material& mb = materials_[materialB];
-    const Vec3& xA = bodies_.position(a);
-    // The penalty law's stiffness (section 6 of docs/theory.md): E_p a / L for the area a each
-    // kept point stands for.
-    const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
-    const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
-    const auto samplePosition = [&](BodyId owner, std::uint32_t sample) {
-      const ShapeModel& shape = *shapes_[bodyShape_[owner]];
-      if (sample >= shape.samples->size()) return Vec3(Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
-      return Vec3(bodies_.toWorld(owner, bodyScale_[owner] * shape.samples->positions()[sample]));
-    };
-    for (const auto& patch : m.patches) {
-      contact::ContactConstraint c;
-      c.bodyA = solverIndex_[a];
-      c.bodyB = isStatic ? 0 : solverIndex_[m.key.second];
-      c.friction = std::min(ma.frictionStatic, mb.frictionStatic);
-      c.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
-      c.restitution = std::min(ma.restitution, mb.restitution);
-      c.count = patch.count;
-      c.dampingRatio = cs.dampingRatio;
-      c.first = static_cast<std::uint32_t>(constraints_.points.size());
-      constraints_.points.resize(constraints_.points.size() + static_cast<std::size_t>(patch.count));
-      const std::span<contact::ConstraintPoint> points = constraints_.pointsOf(c);
-      for (int k = 0; k < patch.count; ++k) {
-        contact::ConstraintPoint& p = points[static_cast<std::size_t>(k)];
-        p.key = patch.keys[k];
-        p.normal = patch.normals[k];
-        contact::tangentBasis(p.normal, p.tangent1, p.tangent2);
-        p.rA = patch.points[k] - xA;
-        p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
-        p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
-        p.stiffness = modulus * patch.areas[k] / lengthScale;
-        const contact::PointHistory* old = detail::findHistory(previous, p.key);
-        if (old == nullptr && previous != nullptr) {
-          // A point new to the reduction takes over the nearest point of the previous step's
-          // (within 0.15 Dn, one and a half sample spacings at the default): its impulses are not
-          // lost when the reduction picks a neighbouring sample.
-          old = nearestPreviousPoint(m.key, *previous, patch.points[k], 0.15 * lengthScale, samplePosition);
-        }
-        if (old != nullptr) {
-          p.normalImpulse = old->normalImpulse;
-          p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
-          p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
-          p.sliding = old->sliding;
-          if (cs.frictionAnchors) {
-            p.slip[0] = old->stretch.dot(p.tangent1); // the part in the new tangent plane
-            p.slip[1] = old->stretch.dot(p.tangent2);
-          }
-          ++warmStarted;
-        }
-      }
-      contact::prepareConstraint(c, points, solverBodies_, h);
-      constraints_.patches.push_back(c);
-      constraintPair_.push_back(static_cast<std::uint32_t>(i));
+    std::size_t points = 0;
+    for (const auto& patch : m.patches) points += static_cast<std::size_t>(patch.count);
+    patchStart[i + 1] = patchStart[i] + m.patches.size();
+    pointStart[i + 1] = pointStart[i] + points;
+  }
+  constraints_.clear();
+  constraints_.patches.resize(patchStart.back());
+  constraints_.points.resize(pointStart.back());
+  constraintPair_.resize(patchStart.back());
+  std::vector<std::uint32_t> warm(manifolds.size(), 0);
+  const auto n = static_cast<std::int64_t>(manifolds.size());
+#pragma omp parallel for schedule(dynamic, 16) if (n >= 64)
+  for (std::int64_t j = 0; j < n; ++j) {
+    const auto i = static_cast<std::size_t>(j);
+    if (!manifolds[i].patches.empty()) {
+      warm[i] = buildPairConstraints(manifolds[i], static_cast<std::uint32_t>(i), patchStart[i], pointStart[i], h);
     }
   }
+  std::size_t warmStarted = 0;
+  for (const std::uint32_t w : warm) warmStarted += w;
   warmStarted_ = warmStarted;
+}
+
+std::uint32_t World::buildPairConstraints(const PairManifold& m, std::uint32_t pairIndex, std::size_t patchAt,
+                                          std::size_t pointAt, double h) {
+  const ConstraintSettings& cs = settings_.constraint;
+  std::uint32_t warmStarted = 0;
+  const History* previous = findPairHistory(m.key);
+  const BodyId a = m.key.first;
+  const bool isStatic = (m.key.second & kStaticBits) != 0;
+  MaterialId materialB = 0;
+  if (isStatic) {
+    const std::uint32_t index = m.key.second & ~kStaticBits;
+    materialB = (m.key.second & kPlaneBit) != 0 ? planes_[index].material : convex_[index].material;
+  } else {
+    materialB = bodyMaterial_[m.key.second];
+  }
+  const Material& ma = materials_[bodyMaterial_[a]];
+  const Material& mb = materials_[materialB];
+  const Vec3& xA = bodies_.position(a);
+  // The penalty law's stiffness (section 6 of docs/theory.md): E_p a / L for the area a each
+  // kept point stands for.
+  const double lengthScale = isStatic ? bodyDn(a) : std::min(bodyDn(a), bodyDn(m.key.second));
+  const double modulus = std::min(ma.penaltyModulus, mb.penaltyModulus);
+  const auto samplePosition = [&](BodyId owner, std::uint32_t sample) {
+    const ShapeModel& shape = *shapes_[bodyShape_[owner]];
+    if (sample >= shape.samples->size()) return Vec3(Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    return Vec3(bodies_.toWorld(owner, bodyScale_[owner] * shape.samples->positions()[sample]));
+  };
+  for (const auto& patch : m.patches) {
+    contact::ContactConstraint c;
+    c.bodyA = solverIndex_[a];
+    c.bodyB = isStatic ? 0 : solverIndex_[m.key.second];
+    c.friction = std::min(ma.frictionStatic, mb.frictionStatic);
+    c.frictionDynamic = std::min(ma.frictionDynamic, mb.frictionDynamic);
+    c.restitution = std::min(ma.restitution, mb.restitution);
+    c.count = patch.count;
+    c.dampingRatio = cs.dampingRatio;
+    c.first = static_cast<std::uint32_t>(pointAt);
+    pointAt += static_cast<std::size_t>(patch.count);
+    const std::span<contact::ConstraintPoint> points = constraints_.pointsOf(c);
+    for (int k = 0; k < patch.count; ++k) {
+      contact::ConstraintPoint& p = points[static_cast<std::size_t>(k)];
+      p.key = patch.keys[k];
+      p.normal = patch.normals[k];
+      contact::tangentBasis(p.normal, p.tangent1, p.tangent2);
+      p.rA = patch.points[k] - xA;
+      p.rB = isStatic ? Vec3::Zero() : Vec3(patch.points[k] - bodies_.position(m.key.second));
+      p.baseSeparation = -patch.depths[k] - p.normal.dot(p.rA - p.rB);
+      p.stiffness = modulus * patch.areas[k] / lengthScale;
+      const contact::PointHistory* old = detail::findHistory(previous, p.key);
+      if (old == nullptr && previous != nullptr) {
+        // A point new to the reduction takes over the nearest point of the previous step's
+        // (within 0.15 Dn, one and a half sample spacings at the default): its impulses are not
+        // lost when the reduction picks a neighbouring sample.
+        old = nearestPreviousPoint(m.key, *previous, patch.points[k], 0.15 * lengthScale, samplePosition);
+      }
+      if (old != nullptr) {
+        p.normalImpulse = old->normalImpulse;
+        p.tangentImpulse[0] = old->tangentImpulse.dot(p.tangent1);
+        p.tangentImpulse[1] = old->tangentImpulse.dot(p.tangent2);
+        p.sliding = old->sliding;
+        if (cs.frictionAnchors) {
+          p.slip[0] = old->stretch.dot(p.tangent1); // the part in the new tangent plane
+          p.slip[1] = old->stretch.dot(p.tangent2);
+        }
+        ++warmStarted;
+      }
+    }
+    contact::prepareConstraint(c, points, solverBodies_, h);
+    constraints_.patches[patchAt] = c;
+    constraintPair_[patchAt] = pairIndex;
+    ++patchAt;
+  }
+  return warmStarted;
 }
 
 void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, double h) {
