@@ -195,7 +195,7 @@ void BroadPhase::findPairs(const std::vector<geometry::Box3>& boxes, const std::
     }
     Neighbours& near = neighbours_[i];
     if (!near.valid || !contains(near.grown, bi)) {
-      const double grow = kFatMargin * bi.size().maxCoeff();
+      const double grow = kGrowth * bi.size().maxCoeff();
       near.grown.min = bi.min.array() - grow;
       near.grown.max = bi.max.array() + grow;
       findNeighbours(boxes, near);

@@ -14,7 +14,7 @@
 ///   are kept in a short list that every active box tests.
 /// So a step costs in proportion to the active boxes and their neighbours, not to the whole scene:
 /// 3000 static rocks under 200 moving units cost the same as the rocks the units touch. An active
-/// box keeps the resting boxes near it (those overlapping its box grown by kFatMargin of its size)
+/// box keeps the resting boxes near it (those overlapping its box grown by kGrowth of its size)
 /// and queries the grid again only when it leaves that grown box: a unit rocking in its place
 /// tests a short list, not the grid's cells, and finds the same pairs.
 /// Pairs are returned sorted (i < j, lexicographic), so everything downstream is independent of
@@ -65,7 +65,7 @@ private:
   std::vector<std::uint32_t> stamp_;        ///< per box: last query that saw it (dedupe across cells)
   std::uint32_t query_ = 0;
   /// An active box's resting neighbours: every resting box overlapping `grown`, which holds the
-  /// active box as it was then, grown by kFatMargin of its largest side on every side.
+  /// active box as it was then, grown by kGrowth of its largest side on every side.
   struct Neighbours {
     geometry::Box3 grown;
     std::vector<std::uint32_t> resting;
@@ -74,7 +74,7 @@ private:
   std::vector<Neighbours> neighbours_;      ///< per body index (used for active ones)
   /// Fraction of an active box's largest side it may move before its neighbours are found again
   /// (ours): larger keeps lists longer and makes them longer.
-  static constexpr double kFatMargin = 0.05;
+  static constexpr double kGrowth = 0.05;
   /// Fill n.resting with the resting boxes overlapping n.grown (the grid's cells and the large boxes).
   void findNeighbours(const std::vector<geometry::Box3>& boxes, Neighbours& n);
 };

@@ -178,7 +178,7 @@ void World::buildConstraints(std::vector<PairManifold>& manifolds, double h) {
     patchStart[i + 1] = patchStart[i] + m.patches.size();
     pointStart[i + 1] = pointStart[i] + points;
   }
-  constraints_.clear();
+  constraints_.clear(); // the resizes below then start every point at its defaults (no impulses)
   constraints_.patches.resize(patchStart.back());
   constraints_.points.resize(pointStart.back());
   constraintPair_.resize(patchStart.back());

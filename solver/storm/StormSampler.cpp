@@ -148,13 +148,13 @@ void StormSampler::blendRecords() {
   const double wa = 1.0 - weight_, wb = weight_;
   blended_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    VoxelFlow& v = blended_[i].now;
+    FlowSample& v = blended_[i].now;
     v.p = wa * a_.p[i] + wb * b_.p[i];
     v.u = wa * a_.u[i] + wb * b_.u[i];
     v.v = hasV ? wa * a_.v[i] + wb * b_.v[i] : 0.0;
     v.w = wa * a_.w[i] + wb * b_.w[i];
     v.alpha = wa * a_.alpha[i] + wb * b_.alpha[i];
-    VoxelFlow& r = blended_[i].slope;
+    FlowSample& r = blended_[i].slope;
     r.p = (b_.p[i] - a_.p[i]) * inv;
     r.u = (b_.u[i] - a_.u[i]) * inv;
     r.v = hasV ? (b_.v[i] - a_.v[i]) * inv : 0.0;
@@ -164,14 +164,7 @@ void StormSampler::blendRecords() {
 }
 
 FlowSample StormSampler::voxel(std::size_t i, bool rate) const {
-  const VoxelFlow& f = rate ? blended_[i].slope : blended_[i].now;
-  FlowSample v;
-  v.p = f.p;
-  v.u = f.u;
-  v.v = f.v;
-  v.w = f.w;
-  v.alpha = f.alpha;
-  return v;
+  return rate ? blended_[i].slope : blended_[i].now;
 }
 
 void StormSampler::accumulate(FlowSample& out, double weight, const FlowSample& v) {

@@ -126,11 +126,8 @@ private:
   StormRecord a_, b_;          ///< records lower_ and lower_ + 1
   /// The file's values at every voxel at time_ (blended from a_ and b_) and their time derivative,
   /// computed once per setTime() so that a sample reads one voxel's values from one place.
-  struct VoxelFlow {
-    double p = 0.0, u = 0.0, v = 0.0, w = 0.0, alpha = 0.0;
-  };
   struct VoxelFlows {
-    VoxelFlow now, slope;
+    FlowSample now, slope;
   };
   std::vector<VoxelFlows> blended_;
   std::size_t heldA_ = SIZE_MAX, heldB_ = SIZE_MAX;
