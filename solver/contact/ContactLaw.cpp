@@ -118,11 +118,27 @@ double contactExponent(double force, double stiffness, double energy) {
   return p >= exactFrom ? p : 1.0 + (p - faceUpTo) * (exactFrom - 1.0) / (exactFrom - faceUpTo);
 }
 
-double dampingTime(const ContactParameters& p, double effectiveMass, double pairStiffness) {
-  if (p.dampingRatio <= 0.0 || pairStiffness <= 0.0) {
+double dampingTime(const ContactParameters& p, double effectiveMass, double pairStiffness, double dt) {
+  if (p.dampingRatio <= 0.0 || pairStiffness <= 0.0 || !(effectiveMass > 0.0)) {
     return 0.0;
   }
-  return 2.0 * p.dampingRatio * std::sqrt(effectiveMass / pairStiffness);
+  // The dashpot alone over the step: v' = v - (c dt / m)(v + v') / 2, c = 2 zeta sqrt(m K), so the
+  // mean (v + v') / 2 = v / (1 + zeta omega dt): the rate applied to v is c / (1 + zeta omega dt).
+  const double zetaOmegaDt = p.dampingRatio * std::sqrt(pairStiffness / effectiveMass) * dt;
+  return 2.0 * p.dampingRatio * std::sqrt(effectiveMass / pairStiffness) / (1.0 + zetaOmegaDt);
+}
+
+double stableStepOfImplicitDashpot(double zeta) {
+  // The step x' = x + dt v, v' = a v - omega^2 dt x' with a = (1 - zeta h) / (1 + zeta h) has
+  // determinant a and trace 1 + a - h^2: stable while h^2 < 2 (1 + a) = 4 / (1 + zeta h), whose
+  // left side grows with h. Bisection on [0, 2] to round-off.
+  const double z = std::max(zeta, 0.0);
+  double lo = 0.0, hi = 2.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mid * mid * (1.0 + z * mid) < 4.0 ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 PointForce evaluatePointContact(const ContactParameters& p, const PointContact& c, const PointHistory& previous,

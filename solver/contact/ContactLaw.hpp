@@ -14,7 +14,9 @@
 ///                                             L the pair's length scale (m)
 ///   Fn     = max(0, k d - beta k (v . n))     normal force on A along n (N)
 ///   beta   = 2 zeta sqrt(m_eff / K_pair)      (s); K_pair = sum of k over the pair's engaged points,
-///                                             so the whole contact patch has damping ratio zeta
+///            / (1 + zeta omega dt)            so the whole contact patch has damping ratio zeta;
+///                                             omega = sqrt(K_pair / m_eff): the dashpot integrated
+///                                             implicitly over the step dt (dampingTime)
 ///   zeta   from the coefficient of restitution e of the clamped (no-attraction) dashpot,
 ///          e = exp(-zeta t*) with t* the end of contact (Schwager and Poschel 2007; overdamped
 ///          for e < exp(-2) = 0.135), inverted by bisection
@@ -56,7 +58,8 @@ struct ContactParameters {
 double restitutionOfClampedDashpot(double zeta);
 
 /// Damping ratio giving restitution e (0 < e <= 1) for the clamped law (inverse of the above).
-/// Small e needs zeta > 1 (e = 0.01: zeta = 4.97), which lowers the stable time step.
+/// Small e needs zeta > 1 (e = 0.1: 1.24; e = 0.01: 4.81); integrated implicitly (dampingTime) it
+/// lowers the stable step far less than an explicit dashpot would.
 double dampingRatioFromRestitution(double restitution);
 
 /// Restitution of the clamped law on a contact whose summed stiffness grows with the overlap d as
@@ -126,9 +129,22 @@ struct PointForce {
 /// Normal stiffness k = E_p a / L of a point (unit: N/m).
 inline double pointStiffness(const ContactParameters& p, double area) { return p.penaltyModulus * area / p.lengthScale; }
 
-/// beta = 2 zeta sqrt(m_eff / K_pair) (unit: s): damping time of the pair's engaged patch.
-/// @param effectiveMass m_eff of the pair (kg); @param pairStiffness sum of k of engaged points (N/m)
-double dampingTime(const ContactParameters& p, double effectiveMass, double pairStiffness);
+/// beta = 2 zeta sqrt(m_eff / K_pair) / (1 + zeta omega dt), omega = sqrt(K_pair / m_eff) (unit: s):
+/// damping time of the pair's engaged patch, integrated implicitly over the step. The dashpot acts
+/// on the mean of the step's velocity and the velocity the dashpot alone would leave at its end
+/// (trapezoidal in the dashpot), which divides its rate by 1 + zeta omega dt: the explicit dashpot's
+/// limit on the step (which vanishes as zeta grows) becomes omega dt < h(zeta) >= 0.87 for every
+/// e >= 0.01 (stableStepOfImplicitDashpot; docs/theory.md, "Implicit contact damping"). dt = 0
+/// gives the explicit dashpot of the continuous law.
+/// @param effectiveMass m_eff of the pair (kg); @param pairStiffness sum of k of engaged points (N/m);
+/// @param dt the time step (s)
+double dampingTime(const ContactParameters& p, double effectiveMass, double pairStiffness, double dt);
+
+/// The largest omega dt at which the central-difference step of an undamped-mass spring of
+/// frequency omega with the implicit dashpot of damping ratio zeta (dampingTime) is stable: the
+/// root of h^2 (1 + zeta h) = 4 (2 at zeta = 0; 0.876 at zeta = 4.81, e = 0.01). The explicit
+/// dashpot's is 2 (sqrt(1 + zeta^2) - zeta) (0.206 at e = 0.01).
+double stableStepOfImplicitDashpot(double zeta);
 
 /// Evaluate the law at one point. @param beta from dampingTime; @param dt time step (s).
 PointForce evaluatePointContact(const ContactParameters& p, const PointContact& c, const PointHistory& previous,

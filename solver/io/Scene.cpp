@@ -157,6 +157,9 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  sample_spacing = {} Dn", s.contact.sampleSpacing));
   line(fmt::format("  level_set_cells_per_dn = {} (cells per Dn)", s.contact.levelSetCellsPerDn));
   line(fmt::format("  max_overlap = {} Dn", s.contact.maxOverlap));
+  // Printed only when set, as body_damping below: scenes with the explicit dashpot keep their
+  // checkpoint fingerprint.
+  if (s.contact.dashpot == ContactDashpot::Implicit) line("  dashpot = implicit");
 
   line("output:");
   line(fmt::format("  folder = {}", s.output.folder.string()));

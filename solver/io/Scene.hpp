@@ -201,6 +201,9 @@ enum class ContactModel { LevelSet, Fdem };
 /// Which solver turns contacts into motion (docs/theory.md, "The constraint solver").
 enum class ContactSolver { Penalty, Constraint };
 
+/// How the penalty law's dashpot is stepped (docs/theory.md section 6, "The dashpot over a step").
+enum class ContactDashpot { Explicit, Implicit };
+
 /// contact.constraint: the constraint solver's settings (simulation::ConstraintSettings holds
 /// the defaults and their provenance).
 struct ConstraintSolverSettings {
@@ -226,6 +229,9 @@ struct ContactSettings {
   /// penalty: the contact law's forces, explicit steps below the contact's stability limit;
   /// constraint: impulses on reduced points, steps of 1/200 s (contact.constraint).
   ContactSolver solver = ContactSolver::Penalty;
+  /// penalty solver: explicit (the dashpot on the half-step velocity) or implicit (trapezoidal in
+  /// the dashpot: a low restitution no longer shortens the automatic step, rebounds further from e).
+  ContactDashpot dashpot = ContactDashpot::Explicit;
   ConstraintSolverSettings constraint;
   /// fdem: tetrahedra per body before the deep ones are dropped (unit: -); seed 002: ~2500 per Core-Loc.
   std::size_t fdemElementsPerUnit = 2500;

@@ -578,8 +578,9 @@ const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
                        "placement",   "initial_state", "body_damping"};
 const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem",
-                           "constraint", "sample_list_slack"};
+                           "constraint", "sample_list_slack", "dashpot"};
 const KeyList kContactSolvers{"penalty", "constraint"};
+const KeyList kContactDashpots{"explicit", "implicit"};
 const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
                               "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle",
                               "friction_anchors", "reuse_distance"};
@@ -655,6 +656,10 @@ void readRunSettings(const Block& top, Scene& scene) {
       c.number("sample_list_slack", {"Dn", kSlack, "0.05; 0 = no near-sample lists"}, scene.contact.sampleListSlack);
   scene.contact.model = static_cast<ContactModel>(c.choice("model", kContactModels, 0));
   scene.contact.solver = static_cast<ContactSolver>(c.choice("solver", kContactSolvers, 0));
+  scene.contact.dashpot = static_cast<ContactDashpot>(c.choice("dashpot", kContactDashpots, 0));
+  if (c.has("dashpot") && scene.contact.solver == ContactSolver::Constraint)
+    c.warnValue("dashpot", "applies to contact.solver: penalty only; the constraint solver's contacts are soft "
+                           "constraints (contact.constraint.damping_ratio)");
   readConstraintSettings(c, scene);
   const Block fd(ctx, c.has("fdem") ? c.get("fdem") : YAML::Node(), c.path("fdem"), kFdemKeys);
   if (c.has("fdem") && scene.contact.model != ContactModel::Fdem)

@@ -162,6 +162,8 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.fdem.elementsPerUnit = scene.contact.fdemElementsPerUnit;
   w.solver = scene.contact.solver == io::ContactSolver::Constraint ? ContactSolverKind::Constraint
                                                                    : ContactSolverKind::Penalty;
+  w.dashpot = scene.contact.dashpot == io::ContactDashpot::Implicit ? DashpotIntegration::Implicit
+                                                                     : DashpotIntegration::Explicit;
   const io::ConstraintSolverSettings& cs = scene.contact.constraint;
   w.constraint.timeStep = cs.timeStep;
   w.constraint.substeps = static_cast<int>(cs.substeps);

@@ -231,8 +231,12 @@ double World::stableTimeStep() const {
     const double iMin = bodies_.info(b).principalMoments.minCoeff();
     const double r = shape.radius * s;
     const double omega = std::max(std::sqrt(k / m), std::sqrt(k * r * r / iMin));
-    // Central difference with viscous damping: dt < (2 / omega)(sqrt(1 + zeta^2) - zeta).
-    limit = std::min(limit, 2.0 / omega * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta));
+    // Central difference with the dashpot: explicit, dt < (2 / omega)(sqrt(1 + zeta^2) - zeta);
+    // implicit (contact::dampingTime given dt), omega dt < h(zeta): 1.25 at e = 0.1 against 0.70.
+    const double h = settings_.dashpot == DashpotIntegration::Implicit
+                         ? contact::stableStepOfImplicitDashpot(maxZeta)
+                         : 2.0 * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta);
+    limit = std::min(limit, h / omega);
   }
   return limit;
 }

@@ -197,7 +197,7 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   // and the effective mass at the contact, for an off-centre impact as for a central one.
   params.dampingRatio = params.dampingByExponent.at(patch.exponent());
   const double effectiveMass = pairEffectiveMass(a, isStatic ? -1 : static_cast<std::int64_t>(b), patch);
-  const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness);
+  const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness, dashpotStep(dt));
   const Vec3& xA = pa.position;
   const Vec3& xB = bodies_.position(b);
   pw.history.reserve(records.size());
@@ -367,7 +367,7 @@ void World::computeForces(double dt, double stateTime) {
     // and the effective mass at the contact, for an off-centre impact as for a central one.
     params.dampingRatio = params.dampingByExponent.at(patch.exponent());
     const double effectiveMass = pairEffectiveMass(a, plane ? -1 : static_cast<std::int64_t>(pw.key.second), patch);
-    const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness);
+    const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness, dashpotStep(dt));
     const BodyId b = plane ? a : pw.key.second;
     const Vec3& xB = bodies_.position(b);
     pw.history.reserve(engaged.size());

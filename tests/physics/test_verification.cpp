@@ -403,10 +403,12 @@ struct Slide {
   double depth = 0.0; ///< centroid displacement into the slope: the overlap of the face (m)
 };
 
-Slide slide(double theta, double mu, double restitution, double dt, double duration) {
+Slide slide(double theta, double mu, double restitution, double dt, double duration,
+            DashpotIntegration dashpot = DashpotIntegration::Explicit) {
   WorldSettings settings;
   settings.sleep.enabled = false;
   settings.timeStep = dt;
+  settings.dashpot = dashpot;
   World world(settings);
   Material m;
   m.name = "concrete";
@@ -477,6 +479,12 @@ TEST(Convergence, SlidingBlockErrorFallsAtTheOrderOfTheIntegrator) {
   //    velocity dt/2 old, an O(dt) error in the damping force, so the scheme is first order
   //    whenever the contact damping matters. The error is small (2.9e-4 of the overlap at the
   //    automatic step of 0.13 ms). Asserted within 0.15 of 1.
+  //  - e = 0.3 with contact.dashpot: implicit: first order as well, with a larger constant: the
+  //    dashpot sees v(n+1/2) / (1 + zeta omega dt), 6.4 % less than the explicit one at the
+  //    coarsest step (zeta = 0.497, omega dt = 0.129), so the transient's overlap and the
+  //    friction it carries are off by up to that fraction there (measured in session 21: errors
+  //    6.6e-8, 3.4e-8, 1.7e-8 m, overlap 3.3 % off; explicit 0.55 %). Asserted: order within 0.15 of 1, overlap
+  //    and displacement error within 6.4 % of the overlap.
   // After the transient there is nothing left to converge: see the next test.
   const double theta = 35.0 * kPi / 180.0;
   const double mu = 0.1;
@@ -484,25 +492,35 @@ TEST(Convergence, SlidingBlockErrorFallsAtTheOrderOfTheIntegrator) {
   const double dt = 2.0e-4;
   struct Case {
     double restitution, order;
+    DashpotIntegration dashpot = DashpotIntegration::Explicit;
+    double depthTolerance = 0.02; ///< of the overlap, at every step
+    double errorTolerance = 0.01; ///< of mu x the overlap, at the coarsest step
   };
-  for (const Case c : {Case{1.0, 2.0}, Case{0.3, 1.0}}) {
+  for (const Case c : {Case{1.0, 2.0}, Case{0.3, 1.0}, Case{0.3, 1.0, DashpotIntegration::Implicit, 0.064, 0.064}}) {
     const PenaltySolution exact = penaltySolution(theta, mu, c.restitution, T);
     double error[3];
     for (int k = 0; k < 3; ++k) {
-      const Slide s = slide(theta, mu, c.restitution, dt / (1 << k), T);
+      const Slide s = slide(theta, mu, c.restitution, dt / (1 << k), T, c.dashpot);
       error[k] = std::abs(s.along - exact.along);
       // The sliding block's displacement and its overlap differ from the model by the same
       // amount (times mu): check the overlap too, to 2 % at the coarsest step.
-      EXPECT_NEAR(s.depth, exact.depth, 0.02 * exact.depth) << "e = " << c.restitution << ", dt = " << dt / (1 << k);
+      EXPECT_NEAR(s.depth, exact.depth, c.depthTolerance * exact.depth)
+          << "e = " << c.restitution << ", dt = " << dt / (1 << k);
+      if (k == 0) {
+        RecordProperty(std::string(c.dashpot == DashpotIntegration::Implicit ? "implicit_" : "") + "depth_error_e" +
+                           std::to_string(static_cast<int>(100 * c.restitution)),
+                       sci(s.depth / exact.depth - 1.0));
+      }
     }
     const double order1 = std::log2(error[0] / error[1]);
     const double order2 = std::log2(error[1] / error[2]);
-    const std::string tag = "e" + std::to_string(static_cast<int>(100 * c.restitution));
+    const std::string tag = std::string(c.dashpot == DashpotIntegration::Implicit ? "implicit_" : "") + "e" +
+                            std::to_string(static_cast<int>(100 * c.restitution));
     RecordProperty("order_" + tag, sci(order1) + " " + sci(order2));
     RecordProperty("error_m_" + tag, sci(error[0]) + " " + sci(error[1]) + " " + sci(error[2]));
     EXPECT_NEAR(order1, c.order, 0.15) << "e = " << c.restitution << ": errors " << error[0] << ", " << error[1] << " m";
     EXPECT_NEAR(order2, c.order, 0.15) << "e = " << c.restitution << ": errors " << error[1] << ", " << error[2] << " m";
-    EXPECT_LT(error[0], 0.01 * mu * exact.depth) << "e = " << c.restitution;
+    EXPECT_LT(error[0], c.errorTolerance * mu * exact.depth) << "e = " << c.restitution;
   }
 }
 
