@@ -233,10 +233,11 @@ double World::stableTimeStep() const {
     const double omega = std::max(std::sqrt(k / m), std::sqrt(k * r * r / iMin));
     // Central difference with the dashpot: explicit, dt < (2 / omega)(sqrt(1 + zeta^2) - zeta);
     // implicit (contact::dampingTime given dt), omega dt < h(zeta): 1.25 at e = 0.1 against 0.70.
-    const double h = settings_.dashpot == DashpotIntegration::Implicit
-                         ? contact::stableStepOfImplicitDashpot(maxZeta)
-                         : 2.0 * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta);
-    limit = std::min(limit, h / omega);
+    // (The explicit expression keeps its order of operations: the same step to the last bit.)
+    const double bodyLimit = settings_.dashpot == DashpotIntegration::Implicit
+                                 ? contact::stableStepOfImplicitDashpot(maxZeta) / omega
+                                 : 2.0 / omega * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta);
+    limit = std::min(limit, bodyLimit);
   }
   return limit;
 }
