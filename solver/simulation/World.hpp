@@ -495,6 +495,12 @@ private:
     std::uint64_t step = 0; ///< last step the pair was a candidate
   };
   std::unordered_map<std::uint64_t, CachedSamples> sampleLists_;
+  /// The last step's body pairs in their order, with their entries: the next step's come in the
+  /// same order and are mostly the same, so a walk along them finds most entries without hashing
+  /// (as the manifold cache's walk). Cleared with the lists (clearSampleLists).
+  std::vector<std::uint64_t> sampleWalkKeys_;
+  std::vector<CachedSamples*> sampleWalkEntries_;
+  void clearSampleLists();
   std::vector<contact::PairSampleCache*> stepLists_; ///< this step's, per candidate pair (constraint solver)
   /// The near-sample list of each candidate pair (nullptr for static geometry, or lists off); drops
   /// the lists of pairs no longer candidates. Serial (WorldContacts.cpp).

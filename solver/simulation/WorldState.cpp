@@ -128,7 +128,7 @@ void World::restoreState(const WorldState& s) {
                                              contact::PointHistory{c.stretch, c.sliding, c.normalImpulse, c.tangentImpulse});
   }
   history_.clear();
-  sampleLists_.clear(); // derived state: made anew from the restored poses
+  clearSampleLists(); // derived state: made anew from the restored poses
   for (auto& [pair, points] : byPair) {
     std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     history_.emplace_back(pair, std::move(points));
