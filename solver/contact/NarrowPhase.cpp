@@ -21,6 +21,16 @@ double samplesInHalfSpaces(const ContactShape& a, const ContactPose& pa, const H
   const auto& samplesA = *a.samples;
   const SampleBuckets& bk = *a.buckets;
   double maxOverlap = 0.0;
+  // Near misses first: every sample lies within A's radius R of its centroid, so if that ball is
+  // outside one face by more than the margin, no sample can come within it (phi >= that face's
+  // distance > margin). The same result as the search, for one dot product per face: a unit
+  // resting on a rock layer above a static core, whose huge box holds every unit of the trunk.
+  const double ballRadius = a.radius * sA;
+  for (std::size_t k = 0; k < normals.size(); ++k) {
+    if (normals[k].dot(xA) - offsets[k] > ballRadius + margin) {
+      return 0.0;
+    }
+  }
   // Visit only the buckets that reach into the region and below every face.
   const Mat3 toLocal = RA.transpose();
   const Vec3 regionCentre = toLocal * (solid.region.centre() - xA) / sA;
