@@ -134,7 +134,7 @@ inline double pointStiffness(const ContactParameters& p, double area) { return p
 /// on the mean of the step's velocity and the velocity the dashpot alone would leave at its end
 /// (trapezoidal in the dashpot), which divides its rate by 1 + zeta omega dt: the explicit dashpot's
 /// limit on the step (which vanishes as zeta grows) becomes omega dt < h(zeta) >= 0.87 for every
-/// e >= 0.01 (stableStepOfImplicitDashpot; docs/theory.md, "Implicit contact damping"). dt = 0
+/// e >= 0.01 (stableStepOfImplicitDashpot; docs/theory.md section 6, "The dashpot over a step"). dt = 0
 /// gives the explicit dashpot of the continuous law.
 /// @param effectiveMass m_eff of the pair (kg); @param pairStiffness sum of k of engaged points (N/m);
 /// @param dt the time step (s)
