@@ -968,3 +968,19 @@ TEST(SceneContactSolver, ConstraintSettingsAreReadAndBadOnesNamed) {
   const std::string sub = errorFrom("contact: {solver: constraint, constraint: {substeps: 100}}\n" + oneBody());
   EXPECT_NE(sub.find("at most 64 substeps"), std::string::npos) << sub;
 }
+
+TEST(SceneContactSolver, DashpotIsReadAndABadOneNamed) {
+  // contact.dashpot (issue 22 part 3): explicit by default, implicit when asked; another word is
+  // refused naming the key, the value and the choices; the scene's description (its checkpoint
+  // fingerprint) names it only when implicit.
+  const Scene d = parseScene(oneBody(), kScenes, "t.yaml");
+  EXPECT_EQ(d.contact.dashpot, ContactDashpot::Explicit);
+  EXPECT_EQ(describeScene(d).find("dashpot"), std::string::npos);
+  const Scene i = parseScene("contact: {dashpot: implicit}\n" + oneBody(), kScenes, "t.yaml");
+  EXPECT_EQ(i.contact.dashpot, ContactDashpot::Implicit);
+  EXPECT_NE(describeScene(i).find("dashpot = implicit"), std::string::npos);
+  const std::string bad = errorFrom("contact: {dashpot: semi}\n" + oneBody());
+  EXPECT_NE(bad.find("contact.dashpot"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("semi"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("implicit"), std::string::npos) << "the choices: " << bad;
+}
