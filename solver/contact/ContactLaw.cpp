@@ -122,10 +122,14 @@ double dampingTime(const ContactParameters& p, double effectiveMass, double pair
   if (p.dampingRatio <= 0.0 || pairStiffness <= 0.0 || !(effectiveMass > 0.0)) {
     return 0.0;
   }
+  const double beta = 2.0 * p.dampingRatio * std::sqrt(effectiveMass / pairStiffness);
+  if (dt <= 0.0) {
+    return beta; // the explicit dashpot (every pair at every step of the default)
+  }
   // The dashpot alone over the step: v' = v - (c dt / m)(v + v') / 2, c = 2 zeta sqrt(m K), so the
   // mean (v + v') / 2 = v / (1 + zeta omega dt): the rate applied to v is c / (1 + zeta omega dt).
   const double zetaOmegaDt = p.dampingRatio * std::sqrt(pairStiffness / effectiveMass) * dt;
-  return 2.0 * p.dampingRatio * std::sqrt(effectiveMass / pairStiffness) / (1.0 + zetaOmegaDt);
+  return beta / (1.0 + zetaOmegaDt);
 }
 
 double stableStepOfImplicitDashpot(double zeta) {

@@ -217,6 +217,11 @@ double World::stableTimeStep() const {
     maxModulus = std::max(maxModulus, materials_[i].penaltyModulus);
     maxZeta = std::max(maxZeta, materialDamping_[i].zeta[0]); // zeta falls with the exponent: p = 1 the largest
   }
+  // Central difference with the dashpot: explicit, dt < (2 / omega)(sqrt(1 + zeta^2) - zeta);
+  // implicit (contact::dampingTime given dt), omega dt < h(zeta): 1.25 at e = 0.1 against 0.70.
+  const bool implicit = settings_.dashpot == DashpotIntegration::Implicit;
+  const double implicitStep = implicit ? contact::stableStepOfImplicitDashpot(maxZeta) : 0.0;
+  const double explicitFactor = std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta;
   for (BodyId b = 0; b < bodies_.size(); ++b) {
     if (bodies_.motionType(b) == dynamics::MotionType::Static) {
       continue;
@@ -231,13 +236,8 @@ double World::stableTimeStep() const {
     const double iMin = bodies_.info(b).principalMoments.minCoeff();
     const double r = shape.radius * s;
     const double omega = std::max(std::sqrt(k / m), std::sqrt(k * r * r / iMin));
-    // Central difference with the dashpot: explicit, dt < (2 / omega)(sqrt(1 + zeta^2) - zeta);
-    // implicit (contact::dampingTime given dt), omega dt < h(zeta): 1.25 at e = 0.1 against 0.70.
     // (The explicit expression keeps its order of operations: the same step to the last bit.)
-    const double bodyLimit = settings_.dashpot == DashpotIntegration::Implicit
-                                 ? contact::stableStepOfImplicitDashpot(maxZeta) / omega
-                                 : 2.0 / omega * (std::sqrt(1.0 + maxZeta * maxZeta) - maxZeta);
-    limit = std::min(limit, bodyLimit);
+    limit = std::min(limit, implicit ? implicitStep / omega : 2.0 / omega * explicitFactor);
   }
   return limit;
 }

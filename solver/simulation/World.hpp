@@ -25,6 +25,7 @@
 #include "dynamics/RigidBodies.hpp"
 #include "geometry/MassProperties.hpp"
 #include "geometry/TriangleMesh.hpp"
+#include "simulation/CacheWalk.hpp"
 #include "simulation/LoadStage.hpp"
 #include "simulation/StepProfile.hpp"
 #include "simulation/WorldState.hpp"
@@ -411,11 +412,9 @@ private:
     return (std::uint64_t{key.first} << 32) | key.second;
   }
   std::uint64_t manifoldCacheStamp_ = 0; ///< counts cacheManifolds calls (CachedManifold::stamp)
-  /// The keys of the last cacheManifolds call in its order, with their entries: the next step's
-  /// candidate pairs come in the same order and are mostly the same, so a walk along them finds
-  /// most entries without hashing (findCachedManifolds). Cleared with the cache.
-  std::vector<std::uint64_t> walkKeys_;
-  std::vector<CachedManifold*> walkEntries_;
+  /// The entries of the last cacheManifolds call in its order (findCachedManifolds walks them).
+  /// Cleared with the cache. Plane pairs come last: their bit is detail::kPlaneBit of the second index.
+  CacheWalk<CachedManifold> manifoldWalk_{{}, {}, std::uint64_t{0x80000000u}};
   /// Empty the cache (and its walk).
   void clearManifoldCache();
   /// entries[w]: keys[w]'s cache entry, or null.
@@ -495,11 +494,9 @@ private:
     std::uint64_t step = 0; ///< last step the pair was a candidate
   };
   std::unordered_map<std::uint64_t, CachedSamples> sampleLists_;
-  /// The last step's body pairs in their order, with their entries: the next step's come in the
-  /// same order and are mostly the same, so a walk along them finds most entries without hashing
-  /// (as the manifold cache's walk). Cleared with the lists (clearSampleLists).
-  std::vector<std::uint64_t> sampleWalkKeys_;
-  std::vector<CachedSamples*> sampleWalkEntries_;
+  /// The last step's body pairs' entries in their order (sampleListsFor walks them). Cleared with
+  /// the lists (clearSampleLists).
+  CacheWalk<CachedSamples> sampleWalk_;
   void clearSampleLists();
   std::vector<contact::PairSampleCache*> stepLists_; ///< this step's, per candidate pair (constraint solver)
   /// The near-sample list of each candidate pair (nullptr for static geometry, or lists off); drops

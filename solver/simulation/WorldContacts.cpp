@@ -280,8 +280,7 @@ void World::candidatePairs(std::vector<contact::BodyPair>& out) {
 
 void World::clearSampleLists() {
   sampleLists_.clear();
-  sampleWalkKeys_.clear();
-  sampleWalkEntries_.clear();
+  sampleWalk_.clear();
 }
 
 std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<contact::BodyPair>& keys) {
@@ -291,31 +290,26 @@ std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<c
     return lists;
   }
   const std::uint64_t step = steps_ + 1; // never 0, the stamp of a new entry
-  // The broad phase's pairs come sorted, so their keys rise: one walk along the last step's finds
-  // the pairs that were there (an entry's address survives the map's rehashing and the erasing
-  // of other entries); a pair it does not find is hashed.
-  std::vector<std::uint64_t> walkKeys;
-  std::vector<CachedSamples*> walkEntries;
-  walkKeys.reserve(sampleWalkKeys_.size() + 16);
-  walkEntries.reserve(sampleWalkKeys_.size() + 16);
-  std::size_t j = 0;
+  // The last step's entries by a walk (CacheWalk), the others by the hash; next step's walk.
+  sampleWalk_.cursor = 0;
+  CacheWalk<CachedSamples> next;
+  next.keys.reserve(sampleWalk_.keys.size() + 16);
+  next.entries.reserve(sampleWalk_.keys.size() + 16);
   for (std::size_t w = 0; w < keys.size(); ++w) {
     if ((keys[w].second & kStaticBits) != 0) continue;
     const std::uint64_t id = (std::uint64_t{keys[w].first} << 32) | keys[w].second;
-    while (j < sampleWalkKeys_.size() && sampleWalkKeys_[j] < id) ++j;
-    CachedSamples& entry = j < sampleWalkKeys_.size() && sampleWalkKeys_[j] == id ? *sampleWalkEntries_[j++]
-                                                                                   : sampleLists_[id];
+    CachedSamples* walked = sampleWalk_.find(id);
+    CachedSamples& entry = walked != nullptr ? *walked : sampleLists_[id];
     entry.step = step;
     for (contact::NearSampleList& direction : entry.cache.directions) direction.searches = direction.reuses = 0;
     lists[w] = &entry.cache;
-    walkKeys.push_back(id);
-    walkEntries.push_back(&entry);
+    next.keys.push_back(id);
+    next.entries.push_back(&entry);
   }
   if (sampleLists_.size() > lists.size()) {
     std::erase_if(sampleLists_, [step](const auto& item) { return item.second.step != step; });
   }
-  sampleWalkKeys_ = std::move(walkKeys);
-  sampleWalkEntries_ = std::move(walkEntries);
+  sampleWalk_ = std::move(next);
   return lists;
 }
 

@@ -39,22 +39,17 @@ void World::relativePose(const contact::BodyPair& key, Vec3& p, Quat& q) const {
 
 void World::clearManifoldCache() {
   manifoldCache_.clear();
-  walkKeys_.clear();
-  walkEntries_.clear();
+  manifoldWalk_.clear();
 }
 
 void World::findCachedManifolds(const std::vector<contact::BodyPair>& keys, std::vector<CachedManifold*>& entries) {
   entries.assign(keys.size(), nullptr);
-  // The candidate pairs come as the broad phase's, sorted, then the plane pairs, sorted: so both
-  // lists are sorted by (plane pair, key), and one walk along the last step's finds the pairs that
-  // were there. A pair it does not find (new, or an order this walk does not expect) is hashed.
-  const auto rank = [](std::uint64_t k) { return std::pair{(k & detail::kPlaneBit) != 0, k}; };
-  std::size_t j = 0;
+  static_assert(detail::kPlaneBit == 0x80000000u, "manifoldWalk_'s late bit is the plane bit");
+  manifoldWalk_.cursor = 0;
   for (std::size_t w = 0; w < keys.size(); ++w) {
     const std::uint64_t k = pairKey(keys[w]);
-    while (j < walkKeys_.size() && rank(walkKeys_[j]) < rank(k)) ++j;
-    if (j < walkKeys_.size() && walkKeys_[j] == k) {
-      entries[w] = walkEntries_[j++];
+    if (CachedManifold* walked = manifoldWalk_.find(k)) {
+      entries[w] = walked;
     } else if (const auto it = manifoldCache_.find(k); it != manifoldCache_.end()) {
       entries[w] = &it->second;
     }
@@ -107,17 +102,17 @@ void World::cacheManifolds(const std::vector<PairManifold>& manifolds, const std
   const std::uint64_t stamp = ++manifoldCacheStamp_; // never 0, the stamp of a restored entry
   // The walk of the next step: these keys and entries (their nodes stay where they are while
   // other entries come and go).
-  walkKeys_.resize(manifolds.size());
-  walkEntries_.assign(entries.begin(), entries.end());
+  manifoldWalk_.keys.resize(manifolds.size());
+  manifoldWalk_.entries.assign(entries.begin(), entries.end());
   for (std::size_t w = 0; w < manifolds.size(); ++w) {
     const PairManifold& m = manifolds[w];
-    walkKeys_[w] = pairKey(m.key);
+    manifoldWalk_.keys[w] = pairKey(m.key);
     if (reused[w] != 0) {
       entries[w]->stamp = stamp;
       continue;
     }
     CachedManifold& cm = entries[w] != nullptr ? *entries[w] : manifoldCache_[pairKey(m.key)];
-    walkEntries_[w] = &cm;
+    manifoldWalk_.entries[w] = &cm;
     cm.stamp = stamp;
     relativePose(m.key, cm.relP, cm.relQ);
     const bool isStatic = (m.key.second & kStaticBits) != 0;
