@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "deformable/DeformableBody.hpp"
+#include "deformable/HalfSpaceFriction.hpp"
 
 #include "core/Error.hpp"
 #include "deformable/SurfaceLoads.hpp"
@@ -43,6 +44,15 @@ void validateSettings(const DeformableSettings& s, const std::string& source) {
                       "normal of length {}, point ({}, {}, {}): the normal must be a unit vector and the point finite",
                       length, s.halfSpaces[i].point.x(), s.halfSpaces[i].point.y(), s.halfSpaces[i].point.z());
     }
+  }
+  core::requireFinite(s.friction, source + ": friction", "-");
+  if (s.friction < 0.0) {
+    core::failInput(source + ": friction", "{}: the Coulomb coefficient must be 0 (frictionless) or positive", s.friction);
+  }
+  if (!(s.frictionStiffnessRatio > 0.0 && s.frictionStiffnessRatio <= 1.0)) {
+    core::failInput(source + ": friction_stiffness_ratio",
+                    "{}: must be in (0, 1]; above 1 the stick springs are stiffer than the contact the stable step "
+                    "allows for (default 8/9)", s.frictionStiffnessRatio);
   }
   core::requireFinite(s.contactPenalty, source + ": contact_penalty", "Pa");
   if (s.contactPenalty < 0.0) {
@@ -104,6 +114,14 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
     }
     omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
+    if (settings_.friction > 0.0) {
+      frictionStiffness_ = tributaryAreas(mesh_, surface_);
+      for (double& k : frictionStiffness_) {
+        k *= settings_.frictionStiffnessRatio * contactGradient_;
+      }
+      state_.frictionAnchors.assign(settings_.halfSpaces.size() * nodes, Vec3::Zero());
+      state_.frictionActive.assign(settings_.halfSpaces.size() * nodes, 0);
+    }
   }
   if (settings_.bodyContact) {
     const auto triangles = surfaceTriangles(mesh_, boundaryFaces(mesh_));
@@ -227,8 +245,25 @@ void DeformableBody::computeAccelerations() {
   if (!surface_.empty() || bodyContact_) {
     // Serial over surface triangles, in order: the nodal sums do not depend on the threads.
     contactForces_.assign(nodeCount(), Vec3::Zero());
-    for (const auto& halfSpace : settings_.halfSpaces) {
-      addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, contactForces_);
+    if (frictionStiffness_.empty()) {
+      for (const auto& halfSpace : settings_.halfSpaces) {
+        addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, contactForces_);
+      }
+    } else {
+      // Friction needs each half-space's own normal forces: one at a time into the scratch.
+      frictionTotal_ = Vec3::Zero();
+      const std::size_t n = nodeCount();
+      for (std::size_t h = 0; h < settings_.halfSpaces.size(); ++h) {
+        halfSpaceScratch_.assign(n, Vec3::Zero());
+        addHalfSpaceContact(surface_, state_.positions, settings_.halfSpaces[h], contactGradient_, halfSpaceScratch_);
+        const FrictionAnchors anchors{std::span<Vec3>(state_.frictionAnchors).subspan(h * n, n),
+                                      std::span<std::uint8_t>(state_.frictionActive).subspan(h * n, n)};
+        frictionTotal_ += addHalfSpaceFriction(halfSpaceScratch_, state_.positions, settings_.halfSpaces[h],
+                                               settings_.friction, frictionStiffness_, anchors, contactForces_);
+        for (std::size_t a = 0; a < n; ++a) {
+          contactForces_[a] += halfSpaceScratch_[a];
+        }
+      }
     }
     if (bodyContact_) {
       bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_);
@@ -387,7 +422,7 @@ Vec3 DeformableBody::contactForce() const {
   for (const auto& halfSpace : settings_.halfSpaces) {
     addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, forces);
   }
-  Vec3 total = Vec3::Zero();
+  Vec3 total = frictionTotal_;
   for (const auto& f : forces) {
     total += f;
   }
@@ -406,6 +441,13 @@ void DeformableBody::restore(const DeformableState& state, const std::string& so
     core::failInput(source, "the state holds {} nodes, this body has {}: the checkpoint is of another mesh; restart "
                             "with the mesh it was written for",
                     state.positions.size(), n);
+  }
+  if (state.frictionAnchors.size() != state_.frictionAnchors.size() ||
+      state.frictionActive.size() != state_.frictionActive.size()) {
+    core::failInput(source, "the state holds {} friction anchors, this body {} ({} half-spaces, friction {}): the "
+                            "checkpoint was written with other friction settings; restart with those",
+                    state.frictionAnchors.size(), state_.frictionAnchors.size(), settings_.halfSpaces.size(),
+                    settings_.friction);
   }
   state_ = state;
 }

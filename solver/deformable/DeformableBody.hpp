@@ -56,6 +56,14 @@ struct DeformableSettings {
   /// with h the mean edge of the surface triangles: a contact layer ten times stiffer than a
   /// surface element, so a pressure sigma sinks in by sigma h / (10 E).
   double contactGradient = 0.0;
+  /// Coulomb coefficient of the half-spaces (unit: -), 0 = frictionless (HalfSpaceFriction.hpp):
+  /// each pressed surface node sticks to an anchor by a tangential spring capped at mu times its
+  /// normal force.
+  double friction = 0.0;
+  /// Tangential stiffness of a node's stick spring over its normal contact stiffness G A_a
+  /// (unit: -), in (0, 1]. 8/9: Mindlin's 2 (1 - nu) / (2 - nu) at nu = 0.2, the rigid solver's
+  /// default (simulation::Material::tangentialStiffnessRatio).
+  double frictionStiffnessRatio = 8.0 / 9.0;
   /// Contact between the disconnected parts of the mesh (BodyContact.hpp). Off: parts pass
   /// through each other.
   bool bodyContact = false;
@@ -77,6 +85,10 @@ struct DeformableState {
   std::vector<Vec3> positions;     ///< (unit: m)
   std::vector<Vec3> velocities;    ///< (unit: m/s)
   std::vector<Vec3> accelerations; ///< at `positions` (unit: m/s^2)
+  /// Friction stick anchors (HalfSpaceFriction.hpp), half-space h's node n at h x nodes + n (unit:
+  /// m); empty without friction.
+  std::vector<Vec3> frictionAnchors;
+  std::vector<std::uint8_t> frictionActive; ///< 1 where the anchor above is set
 };
 
 /// Wall time spent in each stage of the step since the body was made (unit: s).
@@ -138,7 +150,8 @@ public:
   /// Energy of the half-space contacts at the current positions (unit: J). The body contact has
   /// no energy of its own (Munjiza's distribution, BodyContact.hpp): not included.
   [[nodiscard]] double contactEnergy() const;
-  /// Total contact force on the body from the half-spaces at the current positions (unit: N); the
+  /// Total contact force on the body from the half-spaces at the current positions, with the
+  /// friction of the last force evaluation (unit: N); the
   /// body contact sums to zero over the mesh (per part: nodalContactForces()).
   [[nodiscard]] Vec3 contactForce() const;
   /// Body contact (null when settings().bodyContact is off).
@@ -184,6 +197,9 @@ private:
   std::vector<SurfaceTriangle> surface_;    ///< for contact: the surface as flat triangles
   double contactGradient_ = 0.0;            ///< G (unit: Pa/m)
   std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
+  std::vector<double> frictionStiffness_;   ///< per node: kappa G A_a, 0 off the surface (unit: N/m); empty without friction
+  std::vector<Vec3> halfSpaceScratch_;      ///< one half-space's normal nodal forces (friction only)
+  Vec3 frictionTotal_ = Vec3::Zero();       ///< sum of the friction forces at the last evaluation (unit: N)
   std::shared_ptr<const BodyContact> bodyContact_;
   BodyContactStats bodyContactStats_;
 };

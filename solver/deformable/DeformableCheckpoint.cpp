@@ -66,6 +66,11 @@ void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem
         putVectors(out, s.positions);
         putVectors(out, s.velocities);
         putVectors(out, s.accelerations);
+        // Version 2: the friction anchors (HalfSpaceFriction.hpp), count 0 without friction.
+        put(out, static_cast<std::uint64_t>(s.frictionAnchors.size()));
+        putVectors(out, s.frictionAnchors);
+        out.write(reinterpret_cast<const char*>(s.frictionActive.data()),
+                  static_cast<std::streamsize>(s.frictionActive.size()));
       },
       true);
 }
@@ -82,8 +87,8 @@ void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody&
     core::failInput(file, "not a deformable-body checkpoint (no ARMDEF01 header); give the file the run wrote");
   }
   const auto version = get<std::uint32_t>(in, file, "the version");
-  if (version != kDeformableCheckpointVersion) {
-    core::failInput(file, "format version {}, this build reads {}; restart with the armour build that wrote it",
+  if (version != 1 && version != kDeformableCheckpointVersion) {
+    core::failInput(file, "format version {}, this build reads 1 to {}; restart with the armour build that wrote it",
                     version, kDeformableCheckpointVersion);
   }
   const auto nen = get<std::uint32_t>(in, file, "the element order");
@@ -103,6 +108,19 @@ void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody&
   state.positions = getVectors(in, nodes, file, "positions");
   state.velocities = getVectors(in, nodes, file, "velocities");
   state.accelerations = getVectors(in, nodes, file, "accelerations");
+  if (version >= 2) {
+    const auto anchors = get<std::uint64_t>(in, file, "the friction anchor count");
+    if (anchors != body.state().frictionAnchors.size()) {
+      core::failInput(file, "holds {} friction anchors, this body {}: it was written with other friction settings "
+                            "(friction, half-spaces); restart with those", anchors, body.state().frictionAnchors.size());
+    }
+    state.frictionAnchors = getVectors(in, anchors, file, "friction anchors");
+    state.frictionActive.resize(anchors);
+    in.read(reinterpret_cast<char*>(state.frictionActive.data()), static_cast<std::streamsize>(anchors));
+    if (!in) {
+      core::failInput(file, "the file ends inside the friction flags: it is truncated; use an earlier checkpoint");
+    }
+  }
   body.restore(state, file);
 }
 

@@ -5,7 +5,9 @@
 /// stopped run continues bit for bit. Layout (little-endian, as the machine writes it):
 ///   8 bytes magic "ARMDEF01", uint32 format version, uint32 nodes-per-element,
 ///   uint64 nodes, uint64 elements, uint64 steps, double time, uint8 accelerations ready,
-///   then nodes x 3 doubles each of positions, velocities and accelerations.
+///   then nodes x 3 doubles each of positions, velocities and accelerations; from version 2, uint64
+///   friction anchors A (0 without friction), A x 3 doubles of anchors and A bytes of their flags.
+///   Version 1 files (no anchors) are still read.
 /// The mesh, material and boundary conditions are not stored: they come from the setup, and the
 /// reader refuses a file whose node and element counts or element order differ. Written
 /// atomically (core/AtomicFile.hpp).
@@ -16,7 +18,7 @@
 
 namespace armour::deformable {
 
-inline constexpr std::uint32_t kDeformableCheckpointVersion = 1;
+inline constexpr std::uint32_t kDeformableCheckpointVersion = 2;
 
 /// Throws core::InputError naming the path if it cannot be written.
 void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem::path& path);

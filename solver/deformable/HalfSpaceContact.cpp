@@ -100,8 +100,7 @@ double addHalfSpaceContact(const std::vector<SurfaceTriangle>& triangles, const 
   return energy;
 }
 
-double contactFrequency(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles,
-                        const std::vector<double>& masses, double gradient) {
+std::vector<double> tributaryAreas(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles) {
   std::vector<double> area(mesh.nodeCount(), 0.0);
   for (const auto& tri : triangles) {
     const double a = 0.5 * (mesh.nodes[tri[1]] - mesh.nodes[tri[0]]).cross(mesh.nodes[tri[2]] - mesh.nodes[tri[0]]).norm();
@@ -109,6 +108,12 @@ double contactFrequency(const DeformableMesh& mesh, const std::vector<SurfaceTri
       area[n] += a / 3.0;
     }
   }
+  return area;
+}
+
+double contactFrequency(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles,
+                        const std::vector<double>& masses, double gradient) {
+  const std::vector<double> area = tributaryAreas(mesh, triangles);
   double omega2 = 0.0;
   for (std::size_t n = 0; n < area.size(); ++n) {
     omega2 = std::max(omega2, gradient * area[n] / masses[n]);

@@ -45,6 +45,10 @@ using SurfaceTriangle = std::array<std::int32_t, 3>;
 double addHalfSpaceContact(const std::vector<SurfaceTriangle>& triangles, const std::vector<Vec3>& positions,
                            const HalfSpace& halfSpace, double gradient, std::vector<Vec3>& forces);
 
+/// Tributary area of each node on the surface triangles (a third of each triangle around it) in the
+/// reference configuration (unit: m^2); 0 for interior nodes.
+[[nodiscard]] std::vector<double> tributaryAreas(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles);
+
 /// Largest contact frequency sqrt(G A_a / m_a) over the surface nodes (unit: rad/s), A_a the
 /// node's tributary area (a third of each triangle around it, reference configuration): what
 /// fully pressed contact adds to the element frequencies.
