@@ -101,7 +101,7 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
     }
   }
   double omegaContact = 0.0;
-  if (!settings_.halfSpaces.empty()) {
+  if (!settings_.halfSpaces.empty() || settings_.rigidContact) {
     surface_ = surfaceTriangles(mesh_, boundaryFaces(mesh_));
     contactGradient_ = settings_.contactGradient;
     if (contactGradient_ == 0.0) {
@@ -114,7 +114,7 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
     }
     omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
-    if (settings_.friction > 0.0) {
+    if (settings_.friction > 0.0 && !settings_.halfSpaces.empty()) {
       frictionStiffness_ = tributaryAreas(mesh_, surface_);
       for (double& k : frictionStiffness_) {
         k *= settings_.frictionStiffnessRatio * contactGradient_;
@@ -265,6 +265,10 @@ void DeformableBody::computeAccelerations() {
         }
       }
     }
+    obstacleLoads_.assign(obstacles_.size(), ObstacleLoad{});
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      obstacleLoads_[o] = addObstacleContact(surface_, state_.positions, obstacles_[o], contactGradient_, contactForces_);
+    }
     if (bodyContact_) {
       bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_);
     }
@@ -414,6 +418,9 @@ double DeformableBody::contactEnergy() const {
   for (const auto& halfSpace : settings_.halfSpaces) {
     energy += addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, scratch);
   }
+  for (const RigidObstacle& obstacle : obstacles_) {
+    energy += addObstacleContact(surface_, state_.positions, obstacle, contactGradient_, scratch).energy;
+  }
   return energy;
 }
 
@@ -426,7 +433,18 @@ Vec3 DeformableBody::contactForce() const {
   for (const auto& f : forces) {
     total += f;
   }
+  for (const ObstacleLoad& load : obstacleLoads_) {
+    total -= load.force;
+  }
   return total;
+}
+
+void DeformableBody::setObstacles(std::vector<RigidObstacle> obstacles) {
+  if (!settings_.rigidContact) {
+    core::failInput(source_ + ": rigid_contact", "is off, so the stable step does not allow for rigid bodies; set "
+                                                  "rigid_contact on to give obstacles");
+  }
+  obstacles_ = std::move(obstacles);
 }
 
 std::vector<Mat3> DeformableBody::elementStresses() const {

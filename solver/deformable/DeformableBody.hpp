@@ -26,6 +26,7 @@
 #include "deformable/BodyContact.hpp"
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/HalfSpaceContact.hpp"
+#include "deformable/RigidObstacleContact.hpp"
 #include "deformable/NeoHookean.hpp"
 #include "deformable/StableStep.hpp"
 #include "deformable/TetElement.hpp"
@@ -64,6 +65,10 @@ struct DeformableSettings {
   /// (unit: -), in (0, 1]. 8/9: Mindlin's 2 (1 - nu) / (2 - nu) at nu = 0.2, the rigid solver's
   /// default (simulation::Material::tangentialStiffnessRatio).
   double frictionStiffnessRatio = 8.0 / 9.0;
+  /// Contact with rigid bodies (RigidObstacleContact.hpp), whose poses the caller sets before each
+  /// step (setObstacles). The potential gradient is the half-spaces' G (contactGradient); the
+  /// stable step counts it. Frictionless.
+  bool rigidContact = false;
   /// Contact between the disconnected parts of the mesh (BodyContact.hpp). Off: parts pass
   /// through each other.
   bool bodyContact = false;
@@ -151,9 +156,15 @@ public:
   /// no energy of its own (Munjiza's distribution, BodyContact.hpp): not included.
   [[nodiscard]] double contactEnergy() const;
   /// Total contact force on the body from the half-spaces at the current positions, with the
-  /// friction of the last force evaluation (unit: N); the
+  /// friction and the rigid bodies' contact of the last force evaluation (unit: N); the
   /// body contact sums to zero over the mesh (per part: nodalContactForces()).
   [[nodiscard]] Vec3 contactForce() const;
+  /// The rigid bodies the body touches in the next force evaluation, at their poses at the end of
+  /// the next step (settings().rigidContact; throws core::InputError otherwise). Their level sets
+  /// must outlive the body or the next call.
+  void setObstacles(std::vector<RigidObstacle> obstacles);
+  /// What the contact did to each rigid body at the last force evaluation, in setObstacles' order.
+  [[nodiscard]] const std::vector<ObstacleLoad>& obstacleLoads() const { return obstacleLoads_; }
   /// Body contact (null when settings().bodyContact is off).
   [[nodiscard]] const BodyContact* bodyContact() const { return bodyContact_.get(); }
   /// Contact forces on each node, half-space and body contact, at the last force evaluation (unit: N).
@@ -199,6 +210,8 @@ private:
   std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
   std::vector<double> frictionStiffness_;   ///< per node: kappa G A_a, 0 off the surface (unit: N/m); empty without friction
   std::vector<Vec3> halfSpaceScratch_;      ///< one half-space's normal nodal forces (friction only)
+  std::vector<RigidObstacle> obstacles_;    ///< rigid bodies in contact (setObstacles)
+  std::vector<ObstacleLoad> obstacleLoads_; ///< their loads at the last evaluation
   Vec3 frictionTotal_ = Vec3::Zero();       ///< sum of the friction forces at the last evaluation (unit: N)
   std::shared_ptr<const BodyContact> bodyContact_;
   BodyContactStats bodyContactStats_;

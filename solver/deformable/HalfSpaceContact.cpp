@@ -53,6 +53,26 @@ std::vector<SurfaceTriangle> surfaceTriangles(const DeformableMesh& mesh, const 
   return out;
 }
 
+void integratePositiveDepth(const std::array<double, 3>& depth, double area, Eigen::Vector3d& nd, double& dd) {
+  std::array<Bary, 4> polygon;
+  const int count = clipToPositiveDepth(depth, polygon);
+  // integral of N_a d over the clipped part, and of d^2, by fan triangles and the edge-midpoint
+  // rule (exact for quadratics); sub-triangle areas from barycentric determinants.
+  const Eigen::Vector3d d(depth[0], depth[1], depth[2]);
+  for (int k = 1; k + 1 < count; ++k) {
+    const Bary& a = polygon[0];
+    const Bary& b = polygon[k];
+    const Bary& c = polygon[k + 1];
+    // Area fraction of the sub-triangle in the parent: |det| of two barycentric edges (2D).
+    const double fraction = std::abs((b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]));
+    for (const Bary& mid : {Bary(0.5 * (a + b)), Bary(0.5 * (b + c)), Bary(0.5 * (c + a))}) {
+      const double depthHere = mid.dot(d);
+      nd += (fraction * area / 3.0) * depthHere * mid;
+      dd += (fraction * area / 3.0) * depthHere * depthHere;
+    }
+  }
+}
+
 double addHalfSpaceContact(const std::vector<SurfaceTriangle>& triangles, const std::vector<Vec3>& positions,
                            const HalfSpace& halfSpace, double gradient, std::vector<Vec3>& forces) {
   double energy = 0.0;
@@ -72,25 +92,9 @@ double addHalfSpaceContact(const std::vector<SurfaceTriangle>& triangles, const 
     if (!(area > 0.0)) {
       continue;
     }
-    std::array<Bary, 4> polygon;
-    const int count = clipToPositiveDepth(depth, polygon);
-    // integral of N_a d over the clipped part, and of d^2, by fan triangles and the edge-midpoint
-    // rule (exact for quadratics); sub-triangle areas from barycentric determinants.
     Eigen::Vector3d nd = Eigen::Vector3d::Zero();
     double dd = 0.0;
-    const Eigen::Vector3d d(depth[0], depth[1], depth[2]);
-    for (int k = 1; k + 1 < count; ++k) {
-      const Bary& a = polygon[0];
-      const Bary& b = polygon[k];
-      const Bary& c = polygon[k + 1];
-      // Area fraction of the sub-triangle in the parent: |det| of two barycentric edges (2D).
-      const double fraction = std::abs((b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]));
-      for (const Bary& mid : {Bary(0.5 * (a + b)), Bary(0.5 * (b + c)), Bary(0.5 * (c + a))}) {
-        const double depthHere = mid.dot(d);
-        nd += (fraction * area / 3.0) * depthHere * mid;
-        dd += (fraction * area / 3.0) * depthHere * depthHere;
-      }
-    }
+    integratePositiveDepth(depth, area, nd, dd);
     const Vec3 unit = areaVector / area;
     for (int i = 0; i < 3; ++i) {
       forces[tri[i]] -= gradient * nd[i] * unit;

@@ -39,6 +39,11 @@ using SurfaceTriangle = std::array<std::int32_t, 3>;
 [[nodiscard]] std::vector<SurfaceTriangle> surfaceTriangles(const DeformableMesh& mesh,
                                                             const std::vector<BoundaryFace>& faces);
 
+/// Add to nd the integrals of N_a d (unit: m^3) and to dd the integral of d^2 (unit: m^4) over the
+/// part of a flat triangle of area `area` (unit: m^2) where the linear depth d, of corner values
+/// `depth` (unit: m), is positive: exact (clipped at d = 0, edge-midpoint rule on the fan).
+void integratePositiveDepth(const std::array<double, 3>& depth, double area, Eigen::Vector3d& nd, double& dd);
+
 /// Add the contact forces (unit: N) of `halfSpace` with potential gradient G (unit: Pa/m) on the
 /// body at `positions` to `forces`, triangle by triangle in order (deterministic), and return the
 /// contact energy (unit: J).
