@@ -41,4 +41,18 @@ bool runUtility(const std::string& script, const std::vector<std::string>& args,
   return true;
 }
 
+void keepPreviousLog(const std::filesystem::path& runLog) {
+  std::error_code ec;
+  if (!std::filesystem::exists(runLog, ec)) {
+    return;
+  }
+  for (int k = 1;; ++k) {
+    const std::filesystem::path kept = runLog.parent_path() / fmt::format("run.{}.log", k);
+    if (!std::filesystem::exists(kept, ec)) {
+      std::filesystem::rename(runLog, kept, ec);
+      return; // a log that cannot be moved is overwritten, which loses no result
+    }
+  }
+}
+
 } // namespace armour::app

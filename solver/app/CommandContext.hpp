@@ -4,6 +4,7 @@
 /// What every subcommand shares: the global options (log level, log file) and the start-of-run
 /// banner with the build information, written to the run log before any work.
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ struct GlobalOptions {
 
 /// Apply the global options and log the build line and the command line.
 void startRun(const GlobalOptions& options, const std::string& commandLine);
+
+/// Keep the log of the run being continued: run.log -> run.<k>.log, the first free k from 1 (a log
+/// that cannot be moved is overwritten, which loses no result).
+void keepPreviousLog(const std::filesystem::path& runLog);
 
 /// Run utilities/<script> (Python 3 with numpy and matplotlib, from the source tree) with `args`.
 /// Plots are extras: a missing script or a failed run prints a notice naming `what` was skipped and

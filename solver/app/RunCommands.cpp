@@ -86,21 +86,6 @@ std::string buildWithoutThreads(std::string build) {
   return build;
 }
 
-/// Keep the log of the run being continued: run.log -> run.<k>.log, the first free k from 1.
-void keepPreviousLog(const fs::path& runLog) {
-  std::error_code ec;
-  if (!fs::exists(runLog, ec)) {
-    return;
-  }
-  for (int k = 1;; ++k) {
-    const fs::path kept = runLog.parent_path() / fmt::format("run.{}.log", k);
-    if (!fs::exists(kept, ec)) {
-      fs::rename(runLog, kept, ec);
-      return; // a log that cannot be moved is overwritten, which loses no result
-    }
-  }
-}
-
 /// Log a block of text one line at a time, so that every line carries the log prefix.
 void logLines(const std::shared_ptr<spdlog::logger>& log, const std::string& text) {
   std::istringstream in(text);

@@ -3,6 +3,7 @@
 
 #include "app/AnalyseCommands.hpp"
 #include "app/CommandContext.hpp"
+#include "app/DeformCommands.hpp"
 #include "app/EnsembleCommands.hpp"
 #include "app/PlaceCommands.hpp"
 #include "app/ReportCommands.hpp"
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
   armour::app::addAnalyseCommands(app, global);
   armour::app::addEnsembleCommands(app, global);
   armour::app::addReportCommands(app, global);
+  armour::app::addDeformCommands(app, global);
 
   refuseOutOfRangeNumbers(app);
 

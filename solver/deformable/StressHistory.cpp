@@ -2,12 +2,18 @@
 #include "deformable/StressHistory.hpp"
 
 #include "core/AtomicFile.hpp"
+#include "core/Error.hpp"
 #include "deformable/StressFields.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 
 namespace armour::deformable {
 namespace {
@@ -51,8 +57,9 @@ StressSample sampleStressPeaks(const DeformableBody& body) {
   return out;
 }
 
-void StressHistory::record(const DeformableBody& body) {
-  const auto sample = sampleStressPeaks(body);
+void StressHistory::record(const DeformableBody& body) { add(sampleStressPeaks(body)); }
+
+void StressHistory::add(const StressSample& sample) {
   if (samples_.empty()) {
     extremes_ = sample;
   } else {
@@ -78,6 +85,49 @@ void StressHistory::writeCsv(const std::filesystem::path& path) const {
       out << "\n";
     }
   });
+}
+
+StressHistory StressHistory::readCsv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) {
+    core::failInput(path.string(), "cannot open the stress history; check the path");
+  }
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("time_s,tension_Pa", 0) != 0) {
+    core::failInput(path.string(), "not a stress history (its first line is '{}'); give the stress_history.csv a "
+                                   "run wrote", line);
+  }
+  StressHistory history;
+  std::size_t row = 1;
+  while (std::getline(in, line)) {
+    ++row;
+    std::istringstream fields(line);
+    std::string cell;
+    std::vector<double> v;
+    while (std::getline(fields, cell, ',')) {
+      char* end = nullptr;
+      v.push_back(std::strtod(cell.c_str(), &end));
+      if (cell.empty() || end != cell.c_str() + cell.size() || !std::isfinite(v.back())) {
+        core::failInput(path.string(), "line {}: '{}' is not a finite number; the file is damaged, use an earlier "
+                                       "checkpoint's folder or start the run again", row, cell);
+      }
+    }
+    if (v.size() != 16) {
+      core::failInput(path.string(), "line {} has {} fields, a sample has 16; the file is damaged or truncated", row,
+                      v.size());
+    }
+    StressSample s;
+    StressPeak* peaks[3] = {&s.tension, &s.differential, &s.vonMises};
+    for (int k = 0; k < 3; ++k) {
+      peaks[k]->time = v[0];
+      peaks[k]->value = v[1 + 5 * k];
+      peaks[k]->element = static_cast<std::size_t>(v[2 + 5 * k]);
+      peaks[k]->location = Vec3(v[3 + 5 * k], v[4 + 5 * k], v[5 + 5 * k]);
+    }
+    history.add(s);
+  }
+  return history;
 }
 
 } // namespace armour::deformable

@@ -35,12 +35,18 @@ class StressHistory {
 public:
   /// Record the body's extremes at its current time.
   void record(const DeformableBody& body);
+  /// Add a sample (its times in the peaks); the extremes follow.
+  void add(const StressSample& sample);
   [[nodiscard]] const std::vector<StressSample>& samples() const { return samples_; }
   /// The extremes over every recorded sample (the earliest sample wins a tie); all zero if empty.
   [[nodiscard]] const StressSample& extremes() const { return extremes_; }
   /// CSV: time_s, then for tension, differential and von_mises: value_Pa, element, x_m, y_m, z_m.
   /// Throws core::InputError naming the path if it cannot be written.
   void writeCsv(const std::filesystem::path& path) const;
+  /// Read a history writeCsv wrote (a restart continues it): the same samples to the last bit
+  /// (the numbers are written in their shortest exact form). Throws core::InputError naming the
+  /// file and line of a damaged row.
+  [[nodiscard]] static StressHistory readCsv(const std::filesystem::path& path);
 
 private:
   std::vector<StressSample> samples_;

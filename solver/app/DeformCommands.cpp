@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "app/DeformCommands.hpp"
+
+#include "app/StopSignals.hpp"
+#include "core/AtomicFile.hpp"
+#include "core/BuildInfo.hpp"
+#include "core/Error.hpp"
+#include "core/JsonWriter.hpp"
+#include "core/Log.hpp"
+#include "deformable/DeformableBody.hpp"
+#include "deformable/DeformableCheckpoint.hpp"
+#include "deformable/DeformableVtu.hpp"
+#include "deformable/StressHistory.hpp"
+#include "deformable/StructuredBox.hpp"
+#include "geometry/ShapeLibrary.hpp"
+#include "geometry/Tetrahedralizer.hpp"
+#include "io/DeformableScene.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <regex>
+#include <utility>
+
+namespace armour::app {
+namespace {
+
+namespace fs = std::filesystem;
+using deformable::Vec3;
+
+struct DeformRequest {
+  std::string scene;
+  std::string output;
+  int threads = 0;
+  bool restart = false;
+  double duration = 0.0;
+  bool durationGiven = false;
+};
+
+/// One part's tets in the world: a library shape meshed by gmsh, or a box of Kuhn cells, turned
+/// and placed.
+geometry::TetMesh meshPart(const io::DeformablePart& p, const std::string& source) {
+  geometry::TetMesh mesh;
+  if (!p.shape.empty()) {
+    geometry::ShapeRequest request;
+    request.volume = p.volume;
+    geometry::TetrahedralizeOptions options;
+    options.targetTetCount = p.tets;
+    options.keepSurface = false;
+    options.source = fmt::format("{}: bodies '{}'", source, p.name);
+    mesh = geometry::tetrahedralize(geometry::makeShape(p.shape, request), options); // centred on the centroid
+  } else {
+    mesh = deformable::structuredBox(p.box, static_cast<int>(p.cells[0]), static_cast<int>(p.cells[1]),
+                                     static_cast<int>(p.cells[2]));
+    for (auto& v : mesh.vertices) v -= 0.5 * p.box; // centred on the box's centre
+  }
+  for (auto& v : mesh.vertices) v = p.orientation * v + p.position;
+  return mesh;
+}
+
+/// The frames written so far: (time, file relative to the output folder), as frames.pvd lists them.
+using FrameList = std::vector<std::pair<double, std::string>>;
+
+void writeCollection(const fs::path& pvd, const FrameList& frames) {
+  core::writeFileAtomically(pvd, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+    for (const auto& [t, file] : frames) {
+      out << fmt::format("    <DataSet timestep=\"{}\" file=\"{}\"/>\n", t, file);
+    }
+    out << "  </Collection>\n</VTKFile>\n";
+  });
+}
+
+/// Read back the collection a stopped run wrote (its own format, one DataSet per line).
+FrameList readCollection(const fs::path& pvd) {
+  FrameList frames;
+  std::ifstream in(pvd);
+  const std::regex dataSet(R"re(<DataSet timestep="([^"]+)" file="([^"]+)"/>)re");
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, dataSet)) frames.emplace_back(std::stod(m[1].str()), m[2].str());
+  }
+  return frames;
+}
+
+deformable::DeformableSettings bodySettings(const io::DeformableScene& s, double viscosityLength) {
+  deformable::DeformableSettings d;
+  d.material.density = s.density;
+  d.material.youngModulus = s.youngModulus;
+  d.material.poissonRatio = s.poissonRatio;
+  d.material.viscosity = s.viscosityFraction * deformable::criticalViscosity(d.material, viscosityLength);
+  d.gravity = s.gravity;
+  d.fBar = s.fBar;
+  d.massDamping = s.massDamping;
+  d.stepSafety = s.stepSafety;
+  for (const auto& h : s.halfSpaces) d.halfSpaces.push_back({h.point, h.normal});
+  d.contactGradient = s.contactGradient;
+  d.friction = s.friction;
+  d.bodyContact = s.parts.size() > 1;
+  d.contactPenalty = s.contactPenalty;
+  d.contactDamping = s.contactDamping;
+  return d;
+}
+
+void writeSummary(const fs::path& path, const deformable::DeformableBody& body, const deformable::StressHistory& h,
+                  const std::vector<std::string>& partOfElementName) {
+  const auto& e = h.extremes();
+  core::writeFileAtomically(path, [&](std::ostream& out) {
+    out << "{\n";
+    out << fmt::format("  \"time_s\": {},\n  \"steps\": {},\n  \"elements\": {},\n  \"nodes\": {},\n",
+                       core::jsonNumber(body.time()), body.steps(), body.mesh().elementCount(), body.nodeCount());
+    out << fmt::format("  \"time_step_s\": {},\n  \"samples\": {},\n", core::jsonNumber(body.stableStep().dt),
+                       h.samples().size());
+    const std::pair<const char*, const deformable::StressPeak*> peaks[3] = {
+        {"largest_tension", &e.tension}, {"largest_differential_stress", &e.differential}, {"largest_von_mises", &e.vonMises}};
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = *peaks[k].second;
+      out << fmt::format("  \"{}\": {{\"value_Pa\": {}, \"time_s\": {}, \"element\": {}, \"body\": {}, \"x_m\": [{}, {}, {}]}}{}\n",
+                         peaks[k].first, core::jsonNumber(p.value), core::jsonNumber(p.time), p.element,
+                         core::jsonString(h.samples().empty() ? "" : partOfElementName[p.element]),
+                         core::jsonNumber(p.location.x()), core::jsonNumber(p.location.y()),
+                         core::jsonNumber(p.location.z()), k < 2 ? "," : "");
+    }
+    out << "}\n";
+  });
+}
+
+void runDeform(const DeformRequest& o) {
+  io::DeformableScene scene = io::readDeformableScene(o.scene);
+  if (o.durationGiven) scene.duration = o.duration;
+  if (!o.output.empty()) scene.output = fs::absolute(o.output);
+  const fs::path out = scene.output;
+  const fs::path checkpoint = out / "checkpoint.bin";
+  const fs::path historyFile = out / "stress_history.csv";
+  const fs::path pvd = out / "frames.pvd";
+  const fs::path runLog = out / "run.log";
+  if (o.restart && !fs::exists(checkpoint)) {
+    core::failInput(checkpoint.string(), "no checkpoint to continue from; run without --restart first");
+  }
+  if (o.restart) keepPreviousLog(runLog);
+  std::error_code ec;
+  fs::create_directories(out / "frames", ec);
+  if (ec) {
+    core::failInput(out.string(), "cannot create the output folder ({}); set output.folder in {} or --output to a "
+                                  "writable place", ec.message(), o.scene);
+  }
+  const core::ScopedLogFile logFile(runLog.string());
+  auto log = core::logger("deform");
+  log->info("{}", core::buildInfo());
+  log->info("deform {} -> {}{}", o.scene, out.string(), o.restart ? " (restart)" : "");
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+
+  // The mesh: every part meshed, placed, and merged (parts touch through the body contact).
+  std::vector<geometry::TetMesh> parts;
+  std::vector<std::string> partOfElementName;
+  for (const auto& p : scene.parts) {
+    parts.push_back(meshPart(p, o.scene));
+    partOfElementName.insert(partOfElementName.end(), parts.back().tets.size(), p.name);
+    log->info("body '{}': {} tetrahedra, {:.6g} m^3", p.name, parts.back().tets.size(), parts.back().totalVolume());
+  }
+  const geometry::TetMesh merged = deformable::mergeTetMeshes(parts, std::vector<Vec3>(parts.size(), Vec3::Zero()));
+  const double h = std::cbrt(merged.totalVolume() / static_cast<double>(merged.tets.size()));
+  deformable::DeformableBody body(
+      deformable::makeDeformableMesh(merged, scene.quadratic ? deformable::ElementOrder::Quadratic
+                                                             : deformable::ElementOrder::Linear,
+                                     "deform scene"),
+      bodySettings(scene, h), o.scene);
+  std::vector<Vec3> velocity(body.nodeCount(), Vec3::Zero());
+  std::size_t element = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    for (std::size_t e = 0; e < parts[k].tets.size(); ++e, ++element) {
+      const std::int32_t* nodes = body.mesh().element(element);
+      for (int a = 0; a < body.mesh().nodesPerElement(); ++a) {
+        velocity[static_cast<std::size_t>(nodes[a])] = scene.parts[k].velocity;
+      }
+    }
+  }
+  body.setVelocities(velocity);
+  const double dt = body.stableStep().dt;
+  log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: smallest element {:.4g} m{}); "
+            "viscosity {:.4g} Pa s",
+            body.mesh().elementCount(), scene.quadratic ? "tet10" : "tet4", body.nodeCount(), dt, scene.stepSafety,
+            body.stableStep().lengthMin,
+            body.stableStep().contactFrequency > 0.0
+                ? fmt::format(", contact {:.4g} rad/s", body.stableStep().contactFrequency)
+                : std::string(),
+            body.settings().material.viscosity);
+
+  deformable::StressHistory history;
+  FrameList frames;
+  if (o.restart) {
+    deformable::readDeformableCheckpoint(checkpoint, body);
+    if (fs::exists(historyFile)) history = deformable::StressHistory::readCsv(historyFile);
+    frames = readCollection(pvd);
+    log->info("continued from t = {} s, step {} ({} stress samples, {} frames)", body.time(), body.steps(),
+              history.samples().size(), frames.size());
+  }
+  const auto writeFrame = [&] {
+    const std::string name = fmt::format("frames/frame_{:06d}.vtu", frames.size());
+    deformable::writeDeformableVtu(body, out / name);
+    frames.emplace_back(body.time(), name);
+    writeCollection(pvd, frames);
+  };
+  const auto save = [&] {
+    deformable::writeDeformableCheckpoint(body, checkpoint);
+    history.writeCsv(historyFile);
+    writeSummary(out / "summary.json", body, history, partOfElementName);
+  };
+  if (frames.empty()) writeFrame();
+  if (history.samples().empty()) history.record(body);
+  const double every = scene.framesEvery;
+  double nextFrame = every > 0.0 ? every * (std::floor(body.time() / every + 1e-9) + 1.0) : scene.duration;
+  const StopSignals signals;
+  auto lastSave = std::chrono::steady_clock::now();
+  const auto start = lastSave;
+  while (body.time() < scene.duration * (1.0 - 1e-12)) {
+    body.step(dt); // fixed steps: a restart to a longer duration continues the same sequence
+    if (body.steps() % scene.stressEvery == 0) history.record(body);
+    if (body.time() >= nextFrame * (1.0 - 1e-12) && body.time() < scene.duration * (1.0 - 1e-12)) {
+      writeFrame();
+      nextFrame += every;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - lastSave).count() > scene.checkpointEvery) {
+      save();
+      lastSave = now;
+      log->info("t = {:.6g} s, step {}: checkpoint; largest tension so far {:.4g} MPa", body.time(), body.steps(),
+                1e-6 * history.extremes().tension.value);
+    }
+    if (const int signal = signals.received(); signal != 0) {
+      save();
+      log->warn("stopped by {} at t = {} s, step {}; continue with --restart", signalName(signal), body.time(),
+                body.steps());
+      throw CLI::RuntimeError(kExitStopped);
+    }
+  }
+  // No sample at the end unless its step is a sampling step: a run continued from here samples
+  // the same steps as one that went through (--restart is bit-identical, the history included).
+  writeFrame();
+  save();
+  const auto& e = history.extremes();
+  log->info("finished: t = {} s in {} steps, {:.1f} s of wall time", body.time(), body.steps(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  log->info("largest tension sigma_1 {:.4g} MPa at t = {:.4g} s (body '{}', element {}); largest sigma_1 - sigma_3 "
+            "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
+            1e-6 * e.tension.value, e.tension.time, partOfElementName[e.tension.element], e.tension.element,
+            1e-6 * e.differential.value, e.differential.time, 1e-6 * e.vonMises.value);
+  log->info("outputs: {} (ParaView), {}, {}, {}", pvd.string(), historyFile.string(), (out / "summary.json").string(),
+            checkpoint.string());
+}
+
+} // namespace
+
+void addDeformCommands(CLI::App& app, const GlobalOptions& /*global*/) {
+  auto o = std::make_shared<DeformRequest>();
+  auto* deform = app.add_subcommand("deform", "run a deformable-body scene (seed 002's Solidity_D): stresses in the "
+                                              "units, VTU frames, checkpoints (docs/deformable-file.md)");
+  deform->add_option("scene", o->scene, "deformable scene file (.yaml), docs/deformable-file.md")->required();
+  auto* duration = deform->add_option("--duration", o->duration, "simulated time (s), instead of the scene's run.duration");
+  deform->add_option("--threads", o->threads, "OpenMP threads (0 = OpenMP's default)")->capture_default_str();
+  deform->add_option("-o,--output", o->output, "output folder, instead of the scene's output.folder");
+  deform->add_flag("--restart", o->restart,
+                   "continue the run in the output folder from its checkpoint.bin (to the duration, which may be "
+                   "longer); the scene must be the one that wrote it");
+  deform->callback([o, duration] {
+    o->durationGiven = duration->count() > 0;
+    runDeform(*o);
+  });
+}
+
+} // namespace armour::app
