@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <regex>
 #include <utility>
@@ -41,13 +42,15 @@ struct DeformRequest {
   bool durationGiven = false;
 };
 
-/// One part's tets in the world: a library shape meshed by gmsh, or a box of Kuhn cells, turned
-/// and placed.
-geometry::TetMesh meshPart(const io::DeformablePart& p, const std::string& source) {
+/// One part's tets in its own frame: a library shape meshed by gmsh (centred on its centroid), or
+/// a box of Kuhn cells (centred on its centre).
+geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string& source) {
   geometry::TetMesh mesh;
   if (!p.shape.empty()) {
     geometry::ShapeRequest request;
     request.volume = p.volume;
+    request.seed = p.shapeSeed;
+    request.params = p.params;
     geometry::TetrahedralizeOptions options;
     options.targetTetCount = p.tets;
     options.keepSurface = false;
@@ -58,8 +61,25 @@ geometry::TetMesh meshPart(const io::DeformablePart& p, const std::string& sourc
                                      static_cast<int>(p.cells[2]));
     for (auto& v : mesh.vertices) v -= 0.5 * p.box; // centred on the box's centre
   }
-  for (auto& v : mesh.vertices) v = p.orientation * v + p.position;
   return mesh;
+}
+
+/// Every part's tets in the world. Parts of the same shape, size, count and seed (a grid's
+/// copies) are meshed once and copied.
+std::vector<geometry::TetMesh> meshParts(const std::vector<io::DeformablePart>& parts, const std::string& source) {
+  std::map<std::string, geometry::TetMesh> meshed;
+  std::vector<geometry::TetMesh> out;
+  for (const auto& p : parts) {
+    std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", p.shape, p.volume, p.tets, p.shapeSeed, p.box.x(),
+                                  p.box.y(), p.box.z(), p.cells[0], p.cells[1], p.cells[2]);
+    for (const auto& [name, value] : p.params) key += fmt::format("|{}={}", name, value);
+    auto it = meshed.find(key);
+    if (it == meshed.end()) it = meshed.emplace(key, meshInOwnFrame(p, source)).first;
+    geometry::TetMesh mesh = it->second;
+    for (auto& v : mesh.vertices) v = p.orientation * v + p.position;
+    out.push_back(std::move(mesh));
+  }
+  return out;
 }
 
 /// The frames written so far: (time, file relative to the output folder), as frames.pvd lists them.
@@ -155,12 +175,16 @@ void runDeform(const DeformRequest& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
 
   // The mesh: every part meshed, placed, and merged (parts touch through the body contact).
-  std::vector<geometry::TetMesh> parts;
+  const std::vector<geometry::TetMesh> parts = meshParts(scene.parts, o.scene);
   std::vector<std::string> partOfElementName;
-  for (const auto& p : scene.parts) {
-    parts.push_back(meshPart(p, o.scene));
-    partOfElementName.insert(partOfElementName.end(), parts.back().tets.size(), p.name);
-    log->info("body '{}': {} tetrahedra, {:.6g} m^3", p.name, parts.back().tets.size(), parts.back().totalVolume());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    partOfElementName.insert(partOfElementName.end(), parts[k].tets.size(), scene.parts[k].name);
+    if (k < 10 || k + 1 == parts.size()) {
+      log->info("body '{}': {} tetrahedra, {:.6g} m^3", scene.parts[k].name, parts[k].tets.size(),
+                parts[k].totalVolume());
+    } else if (k == 10) {
+      log->info("... ({} bodies in all)", parts.size());
+    }
   }
   const geometry::TetMesh merged = deformable::mergeTetMeshes(parts, std::vector<Vec3>(parts.size(), Vec3::Zero()));
   const double h = std::cbrt(merged.totalVolume() / static_cast<double>(merged.tets.size()));
@@ -243,8 +267,11 @@ void runDeform(const DeformRequest& o) {
   writeFrame();
   save();
   const auto& e = history.extremes();
-  log->info("finished: t = {} s in {} steps, {:.1f} s of wall time", body.time(), body.steps(),
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  const auto& times = body.stepTimes();
+  log->info("finished: t = {} s in {} steps, {:.1f} s of wall time (element forces {:.1f} s, nodal sums with "
+            "contact {:.1f} s, update {:.1f} s)",
+            body.time(), body.steps(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+            times.elementForces, times.gather, times.update);
   log->info("largest tension sigma_1 {:.4g} MPa at t = {:.4g} s (body '{}', element {}); largest sigma_1 - sigma_3 "
             "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
             1e-6 * e.tension.value, e.tension.time, partOfElementName[e.tension.element], e.tension.element,

@@ -168,9 +168,30 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
   for (std::size_t k = 0; k < tets_.size(); ++k) {
     partBoxes[tetPart_[k]].extend(boxes[k]);
   }
-  const auto nearOtherPart = [&partBoxes](const Eigen::AlignedBox3d& box, std::int32_t part) {
-    for (std::size_t p = 0; p < partBoxes.size(); ++p) {
-      if (static_cast<std::int32_t>(p) != part && !partBoxes[p].isEmpty() && partBoxes[p].intersects(box)) {
+  // The parts whose boxes meet each part's box (sweep along x): a tet or triangle of part q lies
+  // in q's box, so only those parts' boxes can meet it. Many parts (a rock dump) then cost their
+  // neighbours, not every part; the skipped set is the same as testing every part.
+  std::vector<std::vector<std::int32_t>> neighbours(partCount_);
+  {
+    std::vector<std::int32_t> order;
+    for (std::size_t p = 0; p < partCount_; ++p) {
+      if (!partBoxes[p].isEmpty()) order.push_back(static_cast<std::int32_t>(p));
+    }
+    std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+      return partBoxes[a].min().x() < partBoxes[b].min().x() || (partBoxes[a].min().x() == partBoxes[b].min().x() && a < b);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      for (std::size_t j = i + 1; j < order.size() && partBoxes[order[j]].min().x() <= partBoxes[order[i]].max().x(); ++j) {
+        if (partBoxes[order[i]].intersects(partBoxes[order[j]])) {
+          neighbours[order[i]].push_back(order[j]);
+          neighbours[order[j]].push_back(order[i]);
+        }
+      }
+    }
+  }
+  const auto nearOtherPart = [&partBoxes, &neighbours](const Eigen::AlignedBox3d& box, std::int32_t part) {
+    for (const std::int32_t p : neighbours[static_cast<std::size_t>(part)]) {
+      if (partBoxes[p].intersects(box)) {
         return true;
       }
     }

@@ -39,8 +39,9 @@
 /// at the point, Z = rho c_d the material's impedance, zeta (unit: -) the given ratio; the pressure
 /// is kept >= 0 (no adhesion).
 ///
-/// Broad phase: each part's box bounds its target tets; a tet or triangle that meets no other
-/// part's box is skipped. The remaining target tets (those with a node on the surface) are binned
+/// Broad phase: each part's box bounds its target tets; the parts whose boxes meet are found by a
+/// sweep along x, and a tet or triangle that meets none of its part's neighbours' boxes is
+/// skipped (so 288 rocks apart cost their own checks, not 288 x 288). The remaining target tets (those with a node on the surface) are binned
 /// by their bounding boxes on a uniform grid of cell = their largest box edge, as a sorted list of
 /// (cell, element) pairs; each surface triangle takes the elements of the cells its box covers.
 /// All sums run serially in a fixed order (triangle, then element index): the forces do not

@@ -11,7 +11,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <numbers>
+#include <random>
 #include <sstream>
 
 namespace armour::io {
@@ -19,10 +22,12 @@ namespace {
 
 using namespace schema;
 
-const KeyList kTopKeys{"description", "material", "element", "f_bar", "gravity", "bodies", "half_spaces",
-                       "contact",     "run",      "output"};
+const KeyList kTopKeys{"description", "seed", "material", "element", "f_bar", "gravity", "bodies", "half_spaces",
+                       "contact",     "run",  "output"};
 const KeyList kMaterialKeys{"density", "young_modulus", "poisson_ratio", "viscosity", "mass_damping"};
-const KeyList kBodyKeys{"name", "shape", "volume", "tets", "box", "cells", "position", "orientation", "velocity"};
+const KeyList kBodyKeys{"name",        "shape",    "volume", "tets", "shape_seed",        "params", "box",
+                        "cells",       "position", "orientation", "velocity", "random_orientation", "grid"};
+const KeyList kGridKeys{"counts", "spacing"};
 const KeyList kHalfSpaceKeys{"point", "normal"};
 const KeyList kContactKeys{"friction", "gradient", "penalty", "damping"};
 const KeyList kRunKeys{"duration", "step_safety", "frames_every", "stress_every", "checkpoint_every"};
@@ -45,6 +50,18 @@ DeformablePart readPart(const Block& b, std::size_t index) {
     }
     p.volume = b.number("volume", {"m^3", kPositive, "14 (seed 002's Vcross)"});
     p.tets = b.integer("tets", 10, "tetrahedra wanted for the shape; gmsh gets within about 10 %", 2000);
+    p.shapeSeed = b.integer("shape_seed", 0, "the seed of a random shape (rock, voronoi-rock)", 1);
+    if (b.has("params")) {
+      const YAML::Node params = b.get("params");
+      if (!params.IsMap()) b.failValue("params", "expected a mapping of the generator's parameters, e.g. {points: 12}");
+      for (const auto& kv : params) {
+        double v = 0.0;
+        if (!kv.second.IsScalar() || !YAML::convert<double>::decode(kv.second, v) || !std::isfinite(v))
+          b.failValue("params", fmt::format("parameter '{}' = {}: expected a finite number", kv.first.Scalar(),
+                                            valueText(kv.second)));
+        p.params[kv.first.Scalar()] = v; // names and ranges are checked by the generator, which names them
+      }
+    }
     if (p.tets > kMaxTets) b.failValue("tets", fmt::format("more than {} tetrahedra; give fewer", kMaxTets));
     b.refuse("cells", "cells belong to a box; remove it, or give box: [x, y, z] instead of shape");
   } else {
@@ -55,11 +72,55 @@ DeformablePart readPart(const Block& b, std::size_t index) {
       b.failValue("cells", fmt::format("{} tetrahedra: more than {}; give fewer cells", 6 * c[0] * c[1] * c[2], kMaxTets));
     b.refuse("volume", "a box's volume is its size; remove volume");
     b.refuse("tets", "a box is meshed by its cells; remove tets");
+    b.refuse("shape_seed", "a box is not random; remove shape_seed");
+    b.refuse("params", "a box has no shape parameters; remove params");
   }
   p.position = b.vec3("position", {"m", kAnyNumber, "[0, 0, 2]: the shape's centroid or the box's centre"});
   p.orientation = readOrientation(b, "orientation");
   p.velocity = b.vec3("velocity", {"m/s", kAnyNumber, "[0, 0, -0.5] (seed 002's drop)"}, Eigen::Vector3d::Zero());
   return p;
+}
+
+/// A uniformly random rotation (Shoemake's method) from `rng`.
+Eigen::Quaterniond randomRotation(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double u1 = u(rng), u2 = 2.0 * std::numbers::pi * u(rng), u3 = 2.0 * std::numbers::pi * u(rng);
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  return Eigen::Quaterniond(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3)).normalized();
+}
+
+/// The body and its copies: `grid: {counts: [nx, ny, nz], spacing: [dx, dy, dz]}` places
+/// nx ny nz copies from `position` (x fastest), named name_0, name_1, ...; with
+/// `random_orientation: true` each copy (or the single body) is turned at random (from the scene's
+/// seed and the copy's index in the file).
+void readBody(const Block& b, std::size_t index, std::uint64_t seed, std::vector<DeformablePart>& out) {
+  DeformablePart p = readPart(b, index);
+  const bool random = b.flag("random_orientation", false);
+  if (random) b.refuse("orientation", "random_orientation draws every orientation; remove one of the two");
+  std::array<std::uint64_t, 3> counts{1, 1, 1};
+  Eigen::Vector3d spacing = Eigen::Vector3d::Zero();
+  const bool grid = b.has("grid");
+  if (grid) {
+    const Block g(b.context(), b.get("grid"), b.path("grid"), kGridKeys);
+    const auto c = g.integers("counts", 3, 1, "copies along x, y, z");
+    counts = {c[0], c[1], c[2]};
+    spacing = g.vec3("spacing", {"m", kPositive, "[0.66, 0.88, 0.6]: centre to centre along x, y, z"});
+    if (c[0] * c[1] * c[2] > 100000) g.failValue("counts", "more than 100000 copies; give fewer");
+  }
+  std::mt19937_64 rng(seed * 1000003ULL + index);
+  std::size_t copy = 0;
+  for (std::uint64_t k = 0; k < counts[2]; ++k) {
+    for (std::uint64_t j = 0; j < counts[1]; ++j) {
+      for (std::uint64_t i = 0; i < counts[0]; ++i, ++copy) {
+        DeformablePart q = p;
+        if (grid) q.name = fmt::format("{}_{}", p.name, copy);
+        q.position += Eigen::Vector3d(static_cast<double>(i) * spacing.x(), static_cast<double>(j) * spacing.y(),
+                                      static_cast<double>(k) * spacing.z());
+        if (random) q.orientation = randomRotation(rng);
+        out.push_back(std::move(q));
+      }
+    }
+  }
 }
 
 /// The block under `key`, or an empty node (all defaults) when it is absent.
@@ -107,8 +168,9 @@ DeformableScene readDeformableScene(const std::filesystem::path& file) {
   const YAML::Node bodies = top.get("bodies");
   if (!bodies.IsSequence() || bodies.size() == 0)
     top.failValue("bodies", "expected a list of one or more bodies, each with 'shape' or 'box' and 'position'");
+  const std::uint64_t seed = top.integer("seed", 0, "the seed of random orientations", 1);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    scene.parts.push_back(readPart(Block(ctx, bodies[i], indexed("bodies", i), kBodyKeys), i));
+    readBody(Block(ctx, bodies[i], indexed("bodies", i), kBodyKeys), i, seed, scene.parts);
   }
   if (top.has("half_spaces")) {
     const YAML::Node list = top.get("half_spaces");

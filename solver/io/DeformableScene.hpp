@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct DeformablePart {
   std::string shape;                  ///< library shape (geometry/ShapeLibrary); empty for a box
   double volume = 0.0;                ///< shape volume (unit: m^3)
   std::uint64_t tets = 0;             ///< wanted tetrahedra of the shape (unit: -)
+  std::uint64_t shapeSeed = 1;        ///< seed of a random shape (rock, voronoi-rock)
+  std::map<std::string, double> params; ///< the shape generator's parameters (armour shape list)
   Eigen::Vector3d box = Eigen::Vector3d::Zero(); ///< box size (unit: m); zero for a shape
   std::array<std::uint64_t, 3> cells{1, 1, 1};   ///< box cells along x, y, z (6 tets each)
   Eigen::Vector3d position = Eigen::Vector3d::Zero(); ///< shape centroid or box centre (unit: m)

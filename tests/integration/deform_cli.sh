@@ -6,7 +6,8 @@
 # the unit and of the order of seed 002's (1 to 6 MPa: the coarse smoke mesh, 2 of the impact's
 # 4.7 ms); a run to 1 ms continued with --restart to 2 ms ends with the same checkpoint, stress
 # history and frame list as the run that went through (byte for byte), and its first log is kept
-# as run.1.log; bad input is refused naming the key; --restart without a checkpoint is refused.
+# as run.1.log; bad input is refused naming the key; --restart without a checkpoint is refused;
+# the rock dump's smoke variant runs and its rocks are stressed by their landing.
 # Arguments: the armour binary, the cases folder, a work folder.
 set -euo pipefail
 armour="$1"
@@ -52,4 +53,17 @@ grep -q "material.poisson_ratio = 0.5: must be in (-1, 0.5)" "$out/bad.err" || f
 sed 's/shape: vcross/shape: vcros/' "$scene" > "$out/bad2.yaml"
 if "$armour" --log-level warn deform "$out/bad2.yaml" -o "$out/bad2" 2> "$out/bad2.err"; then fail "unknown shape accepted"; fi
 grep -q "did you mean 'vcross'" "$out/bad2.err" || fail "unknown shape: $(cat "$out/bad2.err")"
-echo "deform CLI: outputs, tension, restart and refusals as expected"
+# Seed 002's rock dump, smoke: 8 angular rocks (one shape, random orientations, a grid of copies)
+# thrown onto the floor of the bin land and are stressed by the impacts (von Mises above 1 MPa in
+# a rock).
+"$armour" --log-level warn deform "$cases/rock-dump-smoke.yaml" -o "$out/rocks" --threads 1
+/usr/bin/python3 - "$out/rocks/summary.json" <<'PY' || fail "rock dump smoke: no impact stresses"
+import json, sys
+s = json.load(open(sys.argv[1]))
+v = s["largest_von_mises"]
+print("rock dump smoke: largest von Mises", v["value_Pa"] / 1e6, "MPa in", v["body"], "at", v["time_s"], "s")
+assert v["body"].startswith("rock_"), v
+assert v["value_Pa"] > 1e6, v
+assert s["elements"] == 8 * 56, s["elements"]
+PY
+echo "deform CLI: outputs, tension, restart, refusals and the rock dump as expected"
