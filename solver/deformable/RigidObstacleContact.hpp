@@ -10,10 +10,11 @@
 /// d = -phi the depth, and the exact derivative with respect to the deforming body's nodes is the
 /// traction f_a = - integral over (its boundary inside the solid) of N_a n_body G d da: Reynolds'
 /// transport theorem holds for any fixed field d. Here d is not linear over a surface triangle, so
-/// each triangle is split into k^2 equal sub-triangles (k so that a sub-triangle's edge is at most
-/// the level set's cell), d is sampled at their corners and taken linear on each, and the
-/// half-space integration (integratePositiveDepth) is done exactly on that interpolant, then
-/// distributed to the triangle's nodes by their shape functions.
+/// each triangle is halved recursively toward k^2 equal sub-triangles (k a power of two so that a
+/// sub-triangle's edge is at most the level set's cell), skipping the parts that lie wholly
+/// outside; d is sampled at their corners and taken linear on each, and the half-space
+/// integration (integratePositiveDepth) is done exactly on that interpolant, then distributed to
+/// the triangle's nodes by their shape functions.
 ///
 /// The rigid body takes minus the sum of the nodal forces, and minus their moment about its
 /// centre: action equals reaction exactly, whatever the quadrature.
@@ -23,6 +24,7 @@
 
 #include <Eigen/Geometry>
 
+#include <functional>
 #include <vector>
 
 namespace armour::deformable {
@@ -30,6 +32,10 @@ namespace armour::deformable {
 /// One rigid body as the deforming body sees it, at one instant.
 struct RigidObstacle {
   const contact::LevelSet* levelSet = nullptr; ///< the shape's level set, its own frame (not owned)
+  /// Instead of a level set: an exact signed distance in the shape's own frame (negative inside,
+  /// unscaled), e.g. a sphere's |x| - R for a Hertz test, sampled with cells of `resolution`.
+  std::function<double(const Vec3&)> distance;
+  double resolution = 0.0;                     ///< with `distance`: the sampling length (unit: m)
   double scale = 1.0;                          ///< uniform scale of the shape (unit: -)
   Vec3 position = Vec3::Zero();                ///< origin of the shape's frame, world (unit: m)
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity(); ///< shape frame -> world
@@ -44,12 +50,13 @@ struct ObstacleLoad {
 };
 
 /// Sub-triangles per edge of a surface triangle whose longest edge is `edge` (unit: m) against a
-/// level set of cell `cell` (unit: m): ceil(edge / cell), at least 1, at most 16.
+/// level set of cell `cell` (unit: m): the least power of two with edge / k <= cell, at most 16.
 [[nodiscard]] int obstacleSubdivisions(double edge, double cell);
 
 /// Add the contact forces (unit: N) of `obstacle` with potential gradient G (unit: Pa/m) on the
 /// body at `positions` to `forces`, triangle by triangle in order (deterministic), and return the
-/// rigid body's load. Throws core::InputError when the obstacle has no level set.
+/// rigid body's load. Throws core::InputError when the obstacle has neither a level set nor a
+/// distance with a positive resolution.
 ObstacleLoad addObstacleContact(const std::vector<SurfaceTriangle>& triangles, const std::vector<Vec3>& positions,
                                 const RigidObstacle& obstacle, double gradient, std::vector<Vec3>& forces);
 
