@@ -246,7 +246,7 @@ void runDeform(const DeformRequest& o) {
     if (body.steps() % scene.stressEvery == 0) history.record(body);
     if (body.time() >= nextFrame * (1.0 - 1e-12) && body.time() < scene.duration * (1.0 - 1e-12)) {
       writeFrame();
-      nextFrame += every;
+      while (nextFrame <= body.time() * (1.0 + 1e-12)) nextFrame += every; // a step longer than the interval skips frames
     }
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - lastSave).count() > scene.checkpointEvery) {
