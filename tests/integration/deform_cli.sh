@@ -7,7 +7,8 @@
 # 4.7 ms); a run to 1 ms continued with --restart to 2 ms ends with the same checkpoint, stress
 # history and frame list as the run that went through (byte for byte), and its first log is kept
 # as run.1.log; bad input is refused naming the key; --restart without a checkpoint is refused;
-# the rock dump's smoke variant runs and its rocks are stressed by their landing.
+# the rock dump's smoke variant runs and its rocks are stressed by their landing; stopped by SIGTERM
+# and continued, it ends with the same bytes.
 # Arguments: the armour binary, the cases folder, a work folder.
 set -euo pipefail
 armour="$1"
@@ -66,4 +67,18 @@ assert v["body"].startswith("rock_"), v
 assert v["value_Pa"] > 1e6, v
 assert s["elements"] == 8 * 56, s["elements"]
 PY
+# Stopped by SIGTERM (exit 130, checkpoint written) and continued: the same bytes as the run that
+# went through.
+"$armour" --log-level warn deform "$cases/rock-dump-smoke.yaml" -o "$out/rocks-stopped" --threads 1 &
+pid=$!
+sleep 1.5
+kill -TERM "$pid"
+status=0
+wait "$pid" || status=$?
+[[ $status == 130 ]] || fail "SIGTERM: exit status $status, expected 130 (did the run end before the signal?)"
+[[ -s "$out/rocks-stopped/checkpoint.bin" ]] || fail "SIGTERM: no checkpoint written"
+"$armour" --log-level warn deform "$cases/rock-dump-smoke.yaml" -o "$out/rocks-stopped" --threads 1 --restart
+for f in checkpoint.bin stress_history.csv; do
+  cmp "$out/rocks/$f" "$out/rocks-stopped/$f" || fail "SIGTERM and restart: $f differs from the uninterrupted run"
+done
 echo "deform CLI: outputs, tension, restart, refusals and the rock dump as expected"
