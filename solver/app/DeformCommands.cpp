@@ -15,16 +15,15 @@
 #include "geometry/ShapeLibrary.hpp"
 #include "geometry/Tetrahedralizer.hpp"
 #include "io/DeformableScene.hpp"
+#include "io/VtkFrameWriter.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <memory>
-#include <regex>
 #include <utility>
 
 namespace armour::app {
@@ -80,31 +79,6 @@ std::vector<geometry::TetMesh> meshParts(const std::vector<io::DeformablePart>& 
     out.push_back(std::move(mesh));
   }
   return out;
-}
-
-/// The frames written so far: (time, file relative to the output folder), as frames.pvd lists them.
-using FrameList = std::vector<std::pair<double, std::string>>;
-
-void writeCollection(const fs::path& pvd, const FrameList& frames) {
-  core::writeFileAtomically(pvd, [&](std::ostream& out) {
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-    for (const auto& [t, file] : frames) {
-      out << fmt::format("    <DataSet timestep=\"{}\" file=\"{}\"/>\n", t, file);
-    }
-    out << "  </Collection>\n</VTKFile>\n";
-  });
-}
-
-/// Read back the collection a stopped run wrote (its own format, one DataSet per line).
-FrameList readCollection(const fs::path& pvd) {
-  FrameList frames;
-  std::ifstream in(pvd);
-  const std::regex dataSet(R"re(<DataSet timestep="([^"]+)" file="([^"]+)"/>)re");
-  for (std::string line; std::getline(in, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, dataSet)) frames.emplace_back(std::stod(m[1].str()), m[2].str());
-  }
-  return frames;
 }
 
 deformable::DeformableSettings bodySettings(const io::DeformableScene& s, double viscosityLength) {
@@ -215,24 +189,28 @@ void runDeform(const DeformRequest& o) {
             body.settings().material.viscosity);
 
   deformable::StressHistory history;
-  FrameList frames;
+  std::vector<io::CollectionEntry> frames;
   if (o.restart) {
+    // The history and the frames are written before the checkpoint (save below): what a stop
+    // left beyond the checkpoint's time is dropped and made again.
     deformable::readDeformableCheckpoint(checkpoint, body);
     if (fs::exists(historyFile)) history = deformable::StressHistory::readCsv(historyFile);
-    frames = readCollection(pvd);
+    history.keepUpTo(body.time());
+    if (fs::exists(pvd)) frames = io::readCollection(pvd);
+    std::erase_if(frames, [&](const io::CollectionEntry& e) { return e.time > body.time(); });
     log->info("continued from t = {} s, step {} ({} stress samples, {} frames)", body.time(), body.steps(),
               history.samples().size(), frames.size());
   }
   const auto writeFrame = [&] {
     const std::string name = fmt::format("frames/frame_{:06d}.vtu", frames.size());
     deformable::writeDeformableVtu(body, out / name);
-    frames.emplace_back(body.time(), name);
-    writeCollection(pvd, frames);
+    frames.push_back({body.time(), name});
+    io::writeCollection(pvd, frames);
   };
-  const auto save = [&] {
-    deformable::writeDeformableCheckpoint(body, checkpoint);
+  const auto save = [&] { // the checkpoint last: a stop in between leaves outputs ahead of it, not behind
     history.writeCsv(historyFile);
     writeSummary(out / "summary.json", body, history, partOfElementName);
+    deformable::writeDeformableCheckpoint(body, checkpoint);
   };
   if (frames.empty()) writeFrame();
   if (history.samples().empty()) history.record(body);

@@ -419,7 +419,7 @@ double DeformableBody::contactEnergy() const {
     energy += addHalfSpaceContact(surface_, state_.positions, halfSpace, contactGradient_, scratch);
   }
   for (const RigidObstacle& obstacle : obstacles_) {
-    energy += addObstacleContact(surface_, state_.positions, obstacle, contactGradient_, scratch).energy;
+    energy += addObstacleContact(surface_, state_.positions, obstacle, contactGradient_, scratch, true).energy;
   }
   return energy;
 }

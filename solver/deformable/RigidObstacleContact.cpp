@@ -17,7 +17,8 @@ int obstacleSubdivisions(double edge, double cell) {
 }
 
 ObstacleLoad addObstacleContact(const std::vector<SurfaceTriangle>& triangles, const std::vector<Vec3>& positions,
-                                const RigidObstacle& obstacle, double gradient, std::vector<Vec3>& forces) {
+                                const RigidObstacle& obstacle, double gradient, std::vector<Vec3>& forces,
+                                bool withEnergy) {
   const bool analytic = obstacle.levelSet == nullptr && obstacle.distance;
   if (!analytic && (obstacle.levelSet == nullptr || obstacle.levelSet->empty())) {
     core::failInput("rigid obstacle", "has no level set; give the shape's level set (World::shape(id).levelSet)");
@@ -79,12 +80,13 @@ ObstacleLoad addObstacleContact(const std::vector<SurfaceTriangle>& triangles, c
       double dd = 0.0;
       integratePositiveDepth(d, subArea, ndSub, dd);
       nd += ndSub[0] * b[0] + ndSub[1] * b[1] + ndSub[2] * b[2];
+      touched = true;
+      if (!withEnergy) return;
       // E = -G/2 integral of d^2 (n . n_body), n the solid's outward normal (the half-space's
       // formula, exact where the surface is flat); n at the sub-triangle's centroid.
       const Eigen::Vector3d c = (b[0] + b[1] + b[2]) / 3.0;
       const Vec3 n = toWorld * localNormal(toLocal * (c[0] * x0 + c[1] * x1 + c[2] * x2 - obstacle.position) / s);
       load.energy -= 0.5 * gradient * dd * n.dot(unit);
-      touched = true;
     };
     const auto refine = [&](const auto& self, const std::array<Eigen::Vector3d, 3>& b, const std::array<double, 3>& d,
                             int perEdge) -> void {

@@ -45,7 +45,7 @@ struct RigidObstacle {
 struct ObstacleLoad {
   Vec3 force = Vec3::Zero();  ///< on the rigid body (unit: N)
   Vec3 torque = Vec3::Zero(); ///< on the rigid body, about its position (unit: N m)
-  double energy = 0.0;        ///< contact energy, from the level set's normal at each sub-triangle (unit: J)
+  double energy = 0.0;        ///< contact energy, from the level set's normal at each sub-triangle, if asked (unit: J)
   int triangles = 0;          ///< surface triangles of the deforming body that touch it
 };
 
@@ -55,9 +55,11 @@ struct ObstacleLoad {
 
 /// Add the contact forces (unit: N) of `obstacle` with potential gradient G (unit: Pa/m) on the
 /// body at `positions` to `forces`, triangle by triangle in order (deterministic), and return the
-/// rigid body's load. Throws core::InputError when the obstacle has neither a level set nor a
+/// rigid body's load (its energy only `withEnergy`: it costs a normal per sub-triangle, which the
+/// step does not need). Throws core::InputError when the obstacle has neither a level set nor a
 /// distance with a positive resolution.
 ObstacleLoad addObstacleContact(const std::vector<SurfaceTriangle>& triangles, const std::vector<Vec3>& positions,
-                                const RigidObstacle& obstacle, double gradient, std::vector<Vec3>& forces);
+                                const RigidObstacle& obstacle, double gradient, std::vector<Vec3>& forces,
+                                bool withEnergy = false);
 
 } // namespace armour::deformable

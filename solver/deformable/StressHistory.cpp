@@ -87,6 +87,15 @@ void StressHistory::writeCsv(const std::filesystem::path& path) const {
   });
 }
 
+void StressHistory::keepUpTo(double time) {
+  std::vector<StressSample> all;
+  all.swap(samples_);
+  extremes_ = StressSample{};
+  for (const StressSample& s : all) {
+    if (s.tension.time <= time) add(s);
+  }
+}
+
 StressHistory StressHistory::readCsv(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) {

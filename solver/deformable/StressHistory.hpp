@@ -37,6 +37,9 @@ public:
   void record(const DeformableBody& body);
   /// Add a sample (its times in the peaks); the extremes follow.
   void add(const StressSample& sample);
+  /// Drop the samples after `time` (unit: s), the extremes with them: a restart continues from its
+  /// checkpoint's time, and samples written after it are recorded again.
+  void keepUpTo(double time);
   [[nodiscard]] const std::vector<StressSample>& samples() const { return samples_; }
   /// The extremes over every recorded sample (the earliest sample wins a tie); all zero if empty.
   [[nodiscard]] const StressSample& extremes() const { return extremes_; }

@@ -66,20 +66,6 @@ void removeFramesFrom(const std::filesystem::path& folder, long from) {
   }
 }
 
-void writeCollection(const std::filesystem::path& pvd, const std::vector<CollectionEntry>& entries) {
-  core::writeFileAtomically(pvd, [&](std::ostream& out) {
-    out << "<?xml version=\"1.0\"?>\n"
-           "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-           "  <Collection>\n";
-    for (const auto& e : entries) {
-      // "{}" is the shortest text that reads back to the same double, so resume compares exactly.
-      out << fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time, e.file);
-    }
-    out << "  </Collection>\n"
-           "</VTKFile>\n";
-  });
-}
-
 vtkSmartPointer<vtkDoubleArray> doubleArray(const char* name, int components, vtkIdType tuples) {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
   a->SetName(name);
@@ -179,6 +165,20 @@ vtkSmartPointer<vtkPolyData> surfaces(const std::vector<const BodySnapshot*>& bo
 }
 
 } // namespace
+
+void writeCollection(const std::filesystem::path& pvd, const std::vector<CollectionEntry>& entries) {
+  core::writeFileAtomically(pvd, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+           "  <Collection>\n";
+    for (const auto& e : entries) {
+      // "{}" is the shortest text that reads back to the same double, so resume compares exactly.
+      out << fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time, e.file);
+    }
+    out << "  </Collection>\n"
+           "</VTKFile>\n";
+  });
+}
 
 std::vector<CollectionEntry> readCollection(const std::filesystem::path& pvd) {
   std::ifstream in(pvd);

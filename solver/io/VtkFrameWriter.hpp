@@ -108,7 +108,10 @@ private:
   bool fixedWritten_ = false;
 };
 
-/// Read a .pvd collection written by VtkFrameWriter (DataSet elements, in file order).
+/// Write a .pvd collection naming `entries` (times in their shortest exact form), atomically.
+void writeCollection(const std::filesystem::path& pvd, const std::vector<CollectionEntry>& entries);
+
+/// Read a .pvd collection written by VtkFrameWriter or writeCollection (DataSet elements, in file order).
 /// Throws core::InputError naming the file if it cannot be read or parsed.
 std::vector<CollectionEntry> readCollection(const std::filesystem::path& pvd);
 

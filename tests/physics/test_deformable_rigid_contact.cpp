@@ -54,7 +54,7 @@ TEST(DeformableRigidContact, OnAFlatFaceItIsTheHalfSpacesContact) {
     for (auto& p : x) p.z() -= lowest + (turned ? 0.05 : 0.01);
     std::vector<Vec3> plane(x.size(), Vec3::Zero()), rigid(x.size(), Vec3::Zero());
     const double planeEnergy = addHalfSpaceContact(triangles, x, HalfSpace{}, G, plane);
-    const ObstacleLoad load = addObstacleContact(triangles, x, slab.at(), G, rigid);
+    const ObstacleLoad load = addObstacleContact(triangles, x, slab.at(), G, rigid, true);
     double largest = 0.0, worst = 0.0;
     Vec3 sum = Vec3::Zero();
     for (std::size_t n = 0; n < x.size(); ++n) {

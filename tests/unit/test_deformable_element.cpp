@@ -298,8 +298,52 @@ TEST(DeformableStress, HistoryFindsTheLargestTensionWhereAndWhenItOccurs) {
   while (std::getline(in, line)) {
     ++lines;
   }
-  std::filesystem::remove(file);
   EXPECT_EQ(lines, 4);
+  // Read back (a restart continues the history): the same samples to the last bit, and the extremes.
+  const StressHistory back = StressHistory::readCsv(file);
+  ASSERT_EQ(back.samples().size(), 3U);
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (const auto& [a, b] : {std::pair{&history.samples()[k].tension, &back.samples()[k].tension},
+                               std::pair{&history.samples()[k].differential, &back.samples()[k].differential},
+                               std::pair{&history.samples()[k].vonMises, &back.samples()[k].vonMises}}) {
+      EXPECT_EQ(a->value, b->value);
+      EXPECT_EQ(a->time, b->time);
+      EXPECT_EQ(a->element, b->element);
+      EXPECT_EQ(a->location, b->location);
+    }
+  }
+  EXPECT_EQ(back.extremes().tension.value, history.extremes().tension.value);
+  // keepUpTo drops the later samples and their extremes: all three share t = 0 here, so keeping up
+  // to a time before it leaves none.
+  StressHistory cut = back;
+  cut.keepUpTo(-1.0);
+  EXPECT_TRUE(cut.samples().empty());
+  EXPECT_EQ(cut.extremes().tension.value, 0.0);
+  std::filesystem::remove(file);
+}
+
+TEST(DeformableStress, ADamagedHistoryIsRefusedNamingTheFileAndLine) {
+  const auto file = std::filesystem::temp_directory_path() / ("armour_bad_history_" + std::to_string(::getpid()) + ".csv");
+  const std::string header = "time_s,tension_Pa,tension_element,tension_x_m,tension_y_m,tension_z_m,differential_Pa,"
+                             "differential_element,differential_x_m,differential_y_m,differential_z_m,von_mises_Pa,"
+                             "von_mises_element,von_mises_x_m,von_mises_y_m,von_mises_z_m\n";
+  const std::string good = "0.001,1e6,3,0,0,1,2e6,4,0,0,1,2e6,4,0,0,1\n";
+  for (const auto& [text, expected] :
+       {std::pair<std::string, std::string>{"time,x\n", "not a stress history"},
+        {header + good + "0.002,1e6,3,0,0\n", "line 3 has 5 fields, a sample has 16"},
+        {header + "0.001,abc,3,0,0,1,2e6,4,0,0,1,2e6,4,0,0,1\n", "line 2: 'abc' is not a finite number"},
+        {header + "0.001,nan,3,0,0,1,2e6,4,0,0,1,2e6,4,0,0,1\n", "line 2: 'nan' is not a finite number"}}) {
+    std::ofstream(file) << text;
+    try {
+      (void)StressHistory::readCsv(file);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const core::InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+      EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    }
+  }
+  std::filesystem::remove(file);
 }
 
 } // namespace
