@@ -12,6 +12,7 @@
 #include <netcdf.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <ctime>
 #include <stdexcept>
@@ -51,6 +52,20 @@ Chunking chunkShape(std::size_t requestedRecords, std::size_t bodies, std::size_
     return {1, std::max<std::size_t>(1, kMaxChunkBytes / (width * bytes))};
   }
   return {std::clamp<std::size_t>(kMaxChunkBytes / record, 1, std::max<std::size_t>(1, requestedRecords)), bodies};
+}
+
+/// Records per chunk that fill whole chunks when blocks of `block` records are written: a
+/// multiple of `block` when a chunk holds more, a divisor of it when it holds fewer. At most
+/// `records` (the byte limit), at least 1.
+std::size_t alignedChunkRecords(std::size_t records, std::size_t block) {
+  if (records >= block) {
+    return records / block * block;
+  }
+  std::size_t r = records;
+  while (r > 1 && block % r != 0) {
+    --r;
+  }
+  return r;
 }
 
 std::string readTextAttribute(int ncid, int var, const char* name) {
@@ -116,13 +131,15 @@ void BodySeriesFile::create(const std::filesystem::path& file, const std::vector
   check(nc_def_dim(ncid_, "quat", 4, &quatDim), "define the quat dimension");
   check(nc_def_dim(ncid_, "name_strlen", nameLength, &strDim), "define the name_strlen dimension");
 
-  check(nc_def_var(ncid_, "time", NC_DOUBLE, 1, &timeDim, &timeVar_), "define time");
+  int timeVar = -1, positionVar = -1, orientationVar = -1, velocityVar = -1, angularVar = -1, contactCountVar = -1,
+      maxForceVar = -1, externalForceVar = -1;
+  check(nc_def_var(ncid_, "time", NC_DOUBLE, 1, &timeDim, &timeVar), "define time");
   const std::size_t timeChunk = kTimeChunk;
-  check(nc_def_var_chunking(ncid_, timeVar_, NC_CHUNKED, &timeChunk), "chunk time");
-  text(timeVar_, "units", "s");
-  text(timeVar_, "standard_name", "time");
-  text(timeVar_, "long_name", "simulated time");
-  text(timeVar_, "axis", "T");
+  check(nc_def_var_chunking(ncid_, timeVar, NC_CHUNKED, &timeChunk), "chunk time");
+  text(timeVar, "units", "s");
+  text(timeVar, "standard_name", "time");
+  text(timeVar, "long_name", "simulated time");
+  text(timeVar, "axis", "T");
 
   int idVar = -1, nameVar = -1;
   check(nc_def_var(ncid_, "body_id", NC_INT, 1, &bodyDim, &idVar), "define body_id");
@@ -138,7 +155,10 @@ void BodySeriesFile::create(const std::filesystem::path& file, const std::vector
     std::array<int, 3> dims{timeDim, bodyDim, componentDim};
     const int ndims = componentDim >= 0 ? 3 : 2;
     check(nc_def_var(ncid_, name, type, ndims, dims.data(), &var), "define a variable");
-    const auto chunk = chunkShape(settings_.chunkRecords, n, width, type == NC_DOUBLE ? 8 : 4);
+    auto chunk = chunkShape(settings_.chunkRecords, n, width, type == NC_DOUBLE ? 8 : 4);
+    // Whole chunks per flush (flush() writes syncEvery records into a reopened file): a chunk
+    // rewritten by a later flush would leave its old copy as dead space in the file.
+    chunk.records = alignedChunkRecords(chunk.records, settings_.syncEvery);
     const std::array<std::size_t, 3> chunks{chunk.records, chunk.bodies, width};
     check(nc_def_var_chunking(ncid_, var, NC_CHUNKED, chunks.data()), "set the chunking");
     if (settings_.deflateLevel > 0) {
@@ -152,16 +172,16 @@ void BodySeriesFile::create(const std::filesystem::path& file, const std::vector
       text(var, "comment", kAxesComment);
     }
   };
-  define("position", NC_DOUBLE, vecDim, 3, "m", "centre of mass position", positionVar_);
+  define("position", NC_DOUBLE, vecDim, 3, "m", "centre of mass position", positionVar);
   define("orientation", NC_DOUBLE, quatDim, 4, "1", "orientation quaternion (w, x, y, z), body to world",
-         orientationVar_);
-  define("velocity", NC_DOUBLE, vecDim, 3, "m s-1", "centre of mass velocity", velocityVar_);
-  define("angular_velocity", NC_DOUBLE, vecDim, 3, "rad s-1", "angular velocity", angularVar_);
-  define("contact_count", NC_INT, -1, 1, "1", "number of contacts acting on the body", contactCountVar_);
-  define("max_contact_force", NC_DOUBLE, -1, 1, "N", "largest contact force magnitude on the body", maxForceVar_);
+         orientationVar);
+  define("velocity", NC_DOUBLE, vecDim, 3, "m s-1", "centre of mass velocity", velocityVar);
+  define("angular_velocity", NC_DOUBLE, vecDim, 3, "rad s-1", "angular velocity", angularVar);
+  define("contact_count", NC_INT, -1, 1, "1", "number of contacts acting on the body", contactCountVar);
+  define("max_contact_force", NC_DOUBLE, -1, 1, "N", "largest contact force magnitude on the body", maxForceVar);
   define("hydro_force", NC_DOUBLE, vecDim, 3, "N",
          "hydrodynamic load on the body (pressure, drag, added mass; zero without hydro), last force evaluation",
-         externalForceVar_);
+         externalForceVar);
   check(nc_enddef(ncid_), "finish the header");
 
   std::vector<std::int32_t> ids(n);
@@ -180,6 +200,11 @@ BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<Se
     throw std::logic_error("BodySeriesFile: no bodies");
   }
   settings_.syncEvery = std::max<std::size_t>(1, settings_.syncEvery);
+  settings_.chunkRecords = std::max<std::size_t>(1, settings_.chunkRecords);
+  // flush() reopens the file for each block. With HDF5's file locking on, a reader that holds the
+  // file open (ncdump, a Python session, ParaView) would make that open fail and stop the run: the
+  // writer does not take the lock (HDF5 reads the variable at each open). A user's own setting wins.
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
   const auto& path = settings_.path;
   const auto folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
   std::error_code ec;
@@ -200,61 +225,7 @@ BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<Se
   ReadOnlyFile old;
   std::size_t keep = 0;
   if (settings_.resumeTime && std::filesystem::exists(path)) {
-    // A damaged file can crash libhdf5 inside nc_open: the reader reads it in a child first
-    // (core/ProbeInChild.hpp) and refuses it with the fix.
-    (void)BodySeriesReader(path);
-    check(nc_open(path.c_str(), NC_NOWRITE, &old.ncid), "open the file to resume it");
-    int bodyDim = -1, strDim = -1, timeVar = -1, nameVar = -1, idVar = -1;
-    if (nc_inq_dimid(old.ncid, "body", &bodyDim) != NC_NOERR || nc_inq_dimid(old.ncid, "name_strlen", &strDim) != NC_NOERR ||
-        nc_inq_varid(old.ncid, "time", &timeVar) != NC_NOERR || nc_inq_varid(old.ncid, "body_name", &nameVar) != NC_NOERR ||
-        nc_inq_varid(old.ncid, "body_id", &idVar) != NC_NOERR) {
-      core::failInput(path.string(), "is not an armour body series file, so the run cannot be resumed from it; "
-                                     "move it away or choose another output folder");
-    }
-    std::size_t oldBodies = 0, oldStrlen = 0, oldRecords = 0;
-    int timeDim = -1;
-    check(nc_inq_dimlen(old.ncid, bodyDim, &oldBodies), "read the body dimension");
-    check(nc_inq_dimlen(old.ncid, strDim, &oldStrlen), "read the name_strlen dimension");
-    check(nc_inq_vardimid(old.ncid, timeVar, &timeDim), "read the time dimension");
-    check(nc_inq_dimlen(old.ncid, timeDim, &oldRecords), "read the time dimension");
-    std::vector<char> names(oldBodies * oldStrlen);
-    std::vector<std::int32_t> ids(oldBodies);
-    if (oldBodies > 0) {
-      check(nc_get_var_text(old.ncid, nameVar, names.data()), "read body_name");
-      check(nc_get_var_int(old.ncid, idVar, ids.data()), "read body_id");
-    }
-    for (std::size_t i = 0; i < std::max(oldBodies, bodies.size()); ++i) {
-      std::string oldName;
-      if (i < oldBodies) {
-        const auto* start = names.data() + i * oldStrlen;
-        oldName.assign(start, std::find(start, start + oldStrlen, '\0'));
-      }
-      const bool same = i < oldBodies && i < bodies.size() && ids[i] == bodies[i].id && oldName == bodies[i].name;
-      if (!same) {
-        core::failInput(path.string(),
-                        "lists {} bodies, the scene {}; body {} differs (file: '{}', scene: '{}'): the scene changed "
-                        "since the run started. Resume with the original scene, or start a new run",
-                        oldBodies, bodies.size(), i, oldName, i < bodies.size() ? bodies[i].name : std::string());
-      }
-    }
-    std::vector<double> times(oldRecords);
-    if (oldRecords > 0) {
-      check(nc_get_var_double(old.ncid, timeVar, times.data()), "read time");
-    }
-    // Records are in increasing time; a record cut short by a kill has the (huge) fill value as
-    // its time, so it is dropped here like any record after the resume time.
-    while (keep < oldRecords && times[keep] <= *settings_.resumeTime && (keep == 0 || times[keep] > times[keep - 1])) {
-      ++keep;
-    }
-    if (keep > 0) {
-      lastTime_ = times[keep - 1];
-    }
-    const auto oldHistory = readTextAttribute(old.ncid, NC_GLOBAL, "history");
-    if (!oldHistory.empty()) {
-      history = oldHistory + "\n" + history + fmt::format(" (resumed at t = {} s)", *settings_.resumeTime);
-    }
-    core::logger("io")->info("{}: resuming at t = {} s: keeping {} of {} records", path.string(),
-                             *settings_.resumeTime, keep, oldRecords);
+    keep = openForResume(old.ncid, bodies, history);
   } else if (settings_.resumeTime) {
     core::logger("io")->warn("{}: no file to resume; starting a new one at t = {} s", path.string(),
                              *settings_.resumeTime);
@@ -263,57 +234,13 @@ BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<Se
   const auto tmp = core::temporarySibling(path);
   try {
     create(tmp, bodies, history);
-    // Rebuild rather than reopen: the records after the resume time cannot be removed from an
-    // HDF5 file in place, and a file that says exactly what happened is worth one copy per restart.
-    for (const char* name : kRecordVariables) {
-      if (keep == 0) {
-        break;
-      }
-      int from = -1, to = -1, ndims = 0;
-      if (nc_inq_varid(old.ncid, name, &from) != NC_NOERR) {
-        core::failInput(path.string(), "has no variable '{}', so the run cannot be resumed from it; move it away",
-                        name);
-      }
-      check(nc_inq_varid(ncid_, name, &to), "find a variable");
-      check(nc_inq_varndims(ncid_, to, &ndims), "read a variable's shape");
-      int oldNdims = 0;
-      nc_type oldType = NC_NAT, type = NC_NAT;
-      check(nc_inq_varndims(old.ncid, from, &oldNdims), "read a variable's shape");
-      check(nc_inq_vartype(old.ncid, from, &oldType), "read a variable's type");
-      check(nc_inq_vartype(ncid_, to, &type), "read a variable's type");
-      std::array<int, NC_MAX_VAR_DIMS> dims{};
-      check(nc_inq_vardimid(ncid_, to, dims.data()), "read a variable's shape");
-      std::array<std::size_t, 3> count{1, 1, 1};
-      std::size_t recordValues = 1;
-      for (int d = 1; d < ndims; ++d) {
-        check(nc_inq_dimlen(ncid_, dims[static_cast<std::size_t>(d)], &count[static_cast<std::size_t>(d)]),
-              "read a dimension");
-        recordValues *= count[static_cast<std::size_t>(d)];
-      }
-      std::size_t valueBytes = 0;
-      check(nc_inq_type(ncid_, type, nullptr, &valueBytes), "read a type");
-      if (oldNdims != ndims || oldType != type) {
-        core::failInput(path.string(), "variable '{}' has another shape or type than this version writes; "
-                                       "the run cannot be resumed from it",
-                        name);
-      }
-      const std::size_t block = std::max<std::size_t>(1, kCopyBytes / (recordValues * valueBytes));
-      std::vector<unsigned char> buffer(std::min(block, keep) * recordValues * valueBytes);
-      for (std::size_t first = 0; first < keep; first += block) {
-        std::array<std::size_t, 3> start{first, 0, 0};
-        count[0] = std::min(block, keep - first);
-        check(nc_get_vara(old.ncid, from, start.data(), count.data(), buffer.data()), "read the records to keep");
-        check(nc_put_vara(ncid_, to, start.data(), count.data(), buffer.data()), "copy the records to keep");
-      }
+    if (keep > 0) {
+      copyRecords(old.ncid, keep);
     }
     records_ = keep;
-    check(nc_sync(ncid_), "flush the file");
-    if (old.ncid >= 0) {
-      nc_close(old.ncid);
-      old.ncid = -1;
-    }
-    // The file is complete (header, bodies, kept records): put it in place now, still open, so
-    // that a killed run leaves it at the path the user expects, not under a temporary name.
+    closeOpenFile();
+    // The file is complete (header, bodies, kept records) and closed: only now does it take the
+    // path the user expects.
     core::commitAtomicFile(tmp, path);
   } catch (...) {
     if (ncid_ >= 0) {
@@ -325,10 +252,140 @@ BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<Se
     throw;
   }
   const std::size_t n = bodies.size();
-  vec_.resize(3 * n);
-  quat_.resize(4 * n);
-  ints_.resize(n);
-  scalars_.resize(n);
+  const std::size_t block = settings_.syncEvery;
+  pendingTime_.resize(block);
+  pendingVec_.resize(block * n * 3 * 4); // position, velocity, angular velocity, hydro force
+  pendingQuat_.resize(block * n * 4);
+  pendingCount_.resize(block * n);
+  pendingForce_.resize(block * n);
+}
+
+std::size_t BodySeriesFile::openForResume(int& oldNcid, const std::vector<SeriesBody>& bodies, std::string& history) {
+  const auto& path = settings_.path;
+  // A damaged file can crash libhdf5 inside nc_open: the reader reads it in a child first
+  // (core/ProbeInChild.hpp) and refuses it with the fix.
+  (void)BodySeriesReader(path);
+  check(nc_open(path.c_str(), NC_NOWRITE, &oldNcid), "open the file to resume it");
+  int bodyDim = -1, strDim = -1, timeVar = -1, nameVar = -1, idVar = -1;
+  if (nc_inq_dimid(oldNcid, "body", &bodyDim) != NC_NOERR || nc_inq_dimid(oldNcid, "name_strlen", &strDim) != NC_NOERR ||
+      nc_inq_varid(oldNcid, "time", &timeVar) != NC_NOERR || nc_inq_varid(oldNcid, "body_name", &nameVar) != NC_NOERR ||
+      nc_inq_varid(oldNcid, "body_id", &idVar) != NC_NOERR) {
+    core::failInput(path.string(), "is not an armour body series file, so the run cannot be resumed from it; "
+                                   "move it away or choose another output folder");
+  }
+  std::size_t oldBodies = 0, oldStrlen = 0, oldRecords = 0;
+  int timeDim = -1;
+  check(nc_inq_dimlen(oldNcid, bodyDim, &oldBodies), "read the body dimension");
+  check(nc_inq_dimlen(oldNcid, strDim, &oldStrlen), "read the name_strlen dimension");
+  check(nc_inq_vardimid(oldNcid, timeVar, &timeDim), "read the time dimension");
+  check(nc_inq_dimlen(oldNcid, timeDim, &oldRecords), "read the time dimension");
+  std::vector<char> names(oldBodies * oldStrlen);
+  std::vector<std::int32_t> ids(oldBodies);
+  if (oldBodies > 0) {
+    check(nc_get_var_text(oldNcid, nameVar, names.data()), "read body_name");
+    check(nc_get_var_int(oldNcid, idVar, ids.data()), "read body_id");
+  }
+  for (std::size_t i = 0; i < std::max(oldBodies, bodies.size()); ++i) {
+    std::string oldName;
+    if (i < oldBodies) {
+      const auto* start = names.data() + i * oldStrlen;
+      oldName.assign(start, std::find(start, start + oldStrlen, '\0'));
+    }
+    const bool same = i < oldBodies && i < bodies.size() && ids[i] == bodies[i].id && oldName == bodies[i].name;
+    if (!same) {
+      core::failInput(path.string(),
+                      "lists {} bodies, the scene {}; body {} differs (file: '{}', scene: '{}'): the scene changed "
+                      "since the run started. Resume with the original scene, or start a new run",
+                      oldBodies, bodies.size(), i, oldName, i < bodies.size() ? bodies[i].name : std::string());
+    }
+  }
+  oldTimes_.assign(oldRecords, 0.0);
+  if (oldRecords > 0 && nc_get_var_double(oldNcid, timeVar, oldTimes_.data()) != NC_NOERR) {
+    refuseDamaged(0, "time");
+  }
+  // Records are in increasing time; a record cut short by a kill has the (huge) fill value as
+  // its time, so it is dropped here like any record after the resume time.
+  std::size_t keep = 0;
+  while (keep < oldRecords && oldTimes_[keep] <= *settings_.resumeTime &&
+         (keep == 0 || oldTimes_[keep] > oldTimes_[keep - 1])) {
+    ++keep;
+  }
+  if (keep > 0) {
+    lastTime_ = oldTimes_[keep - 1];
+  }
+  const auto oldHistory = readTextAttribute(oldNcid, NC_GLOBAL, "history");
+  if (!oldHistory.empty()) {
+    history = oldHistory + "\n" + history + fmt::format(" (resumed at t = {} s)", *settings_.resumeTime);
+  }
+  core::logger("io")->info("{}: resuming at t = {} s: keeping {} of {} records", path.string(),
+                           *settings_.resumeTime, keep, oldRecords);
+  return keep;
+}
+
+void BodySeriesFile::refuseDamaged(std::size_t firstBad, const char* variable) const {
+  const auto& path = settings_.path;
+  const std::string from =
+      firstBad < oldTimes_.size() ? fmt::format("record {} (t = {} s)", firstBad, oldTimes_[firstBad])
+                                  : fmt::format("record {}", firstBad);
+  core::failInput(path.string(),
+                  "is damaged: its variable '{}' cannot be read from {} on, and the checkpoint needs its records "
+                  "up to t = {} s (the run was killed while the file was being written). Move it away (e.g. "
+                  "`mv {} {}.damaged`) and restart: the new file starts at the checkpoint, and the records before "
+                  "are in the moved file as far as it can be read",
+                  variable, from, *settings_.resumeTime, path.string(), path.filename().string());
+}
+
+void BodySeriesFile::copyRecords(int oldNcid, std::size_t keep) {
+  // Rebuild rather than reopen: the records after the resume time cannot be removed from an
+  // HDF5 file in place, and a file that says exactly what happened is worth one copy per restart.
+  const auto& path = settings_.path;
+  for (const char* name : kRecordVariables) {
+    int from = -1, to = -1, ndims = 0;
+    if (nc_inq_varid(oldNcid, name, &from) != NC_NOERR) {
+      core::failInput(path.string(), "has no variable '{}', so the run cannot be resumed from it; move it away",
+                      name);
+    }
+    check(nc_inq_varid(ncid_, name, &to), "find a variable");
+    check(nc_inq_varndims(ncid_, to, &ndims), "read a variable's shape");
+    int oldNdims = 0;
+    nc_type oldType = NC_NAT, type = NC_NAT;
+    check(nc_inq_varndims(oldNcid, from, &oldNdims), "read a variable's shape");
+    check(nc_inq_vartype(oldNcid, from, &oldType), "read a variable's type");
+    check(nc_inq_vartype(ncid_, to, &type), "read a variable's type");
+    std::array<int, NC_MAX_VAR_DIMS> dims{};
+    check(nc_inq_vardimid(ncid_, to, dims.data()), "read a variable's shape");
+    std::array<std::size_t, 3> count{1, 1, 1};
+    std::size_t recordValues = 1;
+    for (int d = 1; d < ndims; ++d) {
+      check(nc_inq_dimlen(ncid_, dims[static_cast<std::size_t>(d)], &count[static_cast<std::size_t>(d)]),
+            "read a dimension");
+      recordValues *= count[static_cast<std::size_t>(d)];
+    }
+    std::size_t valueBytes = 0;
+    check(nc_inq_type(ncid_, type, nullptr, &valueBytes), "read a type");
+    if (oldNdims != ndims || oldType != type) {
+      core::failInput(path.string(), "variable '{}' has another shape or type than this version writes; "
+                                     "the run cannot be resumed from it",
+                      name);
+    }
+    const std::size_t block = std::max<std::size_t>(1, kCopyBytes / (recordValues * valueBytes));
+    std::vector<unsigned char> buffer(std::min(block, keep) * recordValues * valueBytes);
+    for (std::size_t first = 0; first < keep; first += block) {
+      std::array<std::size_t, 3> start{first, 0, 0};
+      count[0] = std::min(block, keep - first);
+      if (nc_get_vara(oldNcid, from, start.data(), count.data(), buffer.data()) != NC_NOERR) {
+        // Name the first record that cannot be read (a kill can damage HDF5's chunk index).
+        std::size_t bad = first;
+        count[0] = 1;
+        for (; bad < first + std::min(block, keep - first); ++bad) {
+          start[0] = bad;
+          if (nc_get_vara(oldNcid, from, start.data(), count.data(), buffer.data()) != NC_NOERR) break;
+        }
+        refuseDamaged(bad, name);
+      }
+      check(nc_put_vara(ncid_, to, start.data(), count.data(), buffer.data()), "copy the records to keep");
+    }
+  }
 }
 
 BodySeriesFile::~BodySeriesFile() {
@@ -340,7 +397,7 @@ BodySeriesFile::~BodySeriesFile() {
 }
 
 void BodySeriesFile::append(const BodyFrame& frame) {
-  if (ncid_ < 0) {
+  if (closed_) {
     throw std::logic_error("BodySeriesFile::append after close");
   }
   const std::size_t n = ids_.size();
@@ -356,53 +413,95 @@ void BodySeriesFile::append(const BodyFrame& frame) {
           fmt::format("BodySeriesFile::append: body {} has id {}, the file {}", i, frame.bodies[i].id, ids_[i]));
     }
   }
-
-  const std::array<std::size_t, 3> start{records_, 0, 0};
-  const std::array<std::size_t, 3> vecCount{1, n, 3};
-  const auto putVec = [&](int var, auto member) {
+  // Stage the record; the file is opened only to take a block of syncEvery records.
+  const std::size_t k = pending_;
+  const std::size_t vecBlock = settings_.syncEvery * n * 3;
+  const auto putVec = [&](std::size_t slot, auto member) {
+    double* out = pendingVec_.data() + slot * vecBlock + k * n * 3;
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Vec3& v = frame.bodies[i].*member;
-      vec_[3 * i] = v.x();
-      vec_[3 * i + 1] = v.y();
-      vec_[3 * i + 2] = v.z();
+      out[3 * i] = v.x();
+      out[3 * i + 1] = v.y();
+      out[3 * i + 2] = v.z();
     }
-    check(nc_put_vara_double(ncid_, var, start.data(), vecCount.data(), vec_.data()), "write a record");
   };
-  putVec(positionVar_, &BodySnapshot::position);
+  putVec(0, &BodySnapshot::position);
+  putVec(1, &BodySnapshot::velocity);
+  putVec(2, &BodySnapshot::angularVelocity);
+  putVec(3, &BodySnapshot::externalForce);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& q = frame.bodies[i].orientation;
-    quat_[4 * i] = q.w();
-    quat_[4 * i + 1] = q.x();
-    quat_[4 * i + 2] = q.y();
-    quat_[4 * i + 3] = q.z();
+    double* out = pendingQuat_.data() + (k * n + i) * 4;
+    out[0] = q.w();
+    out[1] = q.x();
+    out[2] = q.y();
+    out[3] = q.z();
+    pendingCount_[k * n + i] = frame.bodies[i].contactCount;
+    pendingForce_[k * n + i] = frame.bodies[i].maxContactForce;
   }
-  const std::array<std::size_t, 3> quatCount{1, n, 4};
-  check(nc_put_vara_double(ncid_, orientationVar_, start.data(), quatCount.data(), quat_.data()), "write a record");
-  putVec(velocityVar_, &BodySnapshot::velocity);
-  putVec(angularVar_, &BodySnapshot::angularVelocity);
-  putVec(externalForceVar_, &BodySnapshot::externalForce);
-  for (std::size_t i = 0; i < n; ++i) {
-    ints_[i] = frame.bodies[i].contactCount;
-    scalars_[i] = frame.bodies[i].maxContactForce;
-  }
-  check(nc_put_vara_int(ncid_, contactCountVar_, start.data(), vecCount.data(), ints_.data()), "write a record");
-  check(nc_put_vara_double(ncid_, maxForceVar_, start.data(), vecCount.data(), scalars_.data()), "write a record");
-  check(nc_put_vara_double(ncid_, timeVar_, start.data(), vecCount.data(), &frame.time), "write a record");
+  pendingTime_[k] = frame.time;
+  ++pending_;
   ++records_;
   lastTime_ = frame.time;
-  if (++sinceSync_ >= settings_.syncEvery) {
-    check(nc_sync(ncid_), "flush the file");
-    sinceSync_ = 0;
+  if (pending_ >= settings_.syncEvery) {
+    flush();
   }
 }
 
-void BodySeriesFile::close() {
+void BodySeriesFile::flush() {
+  if (pending_ == 0) {
+    return;
+  }
+  check(nc_open(settings_.path.c_str(), NC_WRITE, &ncid_), "open the file to append records (was it moved?)");
+  try {
+    const std::size_t n = ids_.size();
+    const std::array<std::size_t, 3> start{records_ - pending_, 0, 0};
+    const std::array<std::size_t, 3> vecCount{pending_, n, 3};
+    const std::array<std::size_t, 3> quatCount{pending_, n, 4};
+    const auto var = [&](const char* name) {
+      int id = -1;
+      check(nc_inq_varid(ncid_, name, &id), "find a variable");
+      return id;
+    };
+    const std::size_t vecBlock = settings_.syncEvery * n * 3;
+    const std::array<const char*, 4> vecNames{"position", "velocity", "angular_velocity", "hydro_force"};
+    for (std::size_t slot = 0; slot < vecNames.size(); ++slot) {
+      check(nc_put_vara_double(ncid_, var(vecNames[slot]), start.data(), vecCount.data(),
+                               pendingVec_.data() + slot * vecBlock),
+            "write records");
+    }
+    check(nc_put_vara_double(ncid_, var("orientation"), start.data(), quatCount.data(), pendingQuat_.data()),
+          "write records");
+    check(nc_put_vara_int(ncid_, var("contact_count"), start.data(), vecCount.data(), pendingCount_.data()),
+          "write records");
+    check(nc_put_vara_double(ncid_, var("max_contact_force"), start.data(), vecCount.data(), pendingForce_.data()),
+          "write records");
+    // Time last: a block cut short by a kill shows the fill value as its time.
+    check(nc_put_vara_double(ncid_, var("time"), start.data(), vecCount.data(), pendingTime_.data()), "write records");
+  } catch (...) {
+    nc_close(ncid_);
+    ncid_ = -1;
+    throw;
+  }
+  pending_ = 0;
+  closeOpenFile();
+}
+
+void BodySeriesFile::closeOpenFile() {
   if (ncid_ < 0) {
     return;
   }
   const int status = nc_close(ncid_);
   ncid_ = -1;
   check(status, "close the file");
+}
+
+void BodySeriesFile::close() {
+  if (closed_) {
+    return;
+  }
+  closed_ = true;
+  flush();
 }
 
 } // namespace armour::io

@@ -10,9 +10,13 @@
 /// angular_velocity, contact_count, max_contact_force. Axes: x onshore, y along the trunk, z up.
 ///
 /// Crash safety: the file is created under a temporary name, given its header and body table,
-/// flushed, and only then renamed into place, so the path never holds a half-made header. It then
-/// grows in place and is flushed (nc_sync) every `syncEvery` records: a killed run leaves a
-/// readable file with at least every record up to the last flush.
+/// closed, and only then renamed into place, so the path never holds a half-made header. Records
+/// are staged in memory and written in blocks of `syncEvery`: flush() opens the file, appends the
+/// block and closes it. Between flushes the file is closed and whole, so a killed run leaves a
+/// readable file with every record up to the last flush, and other programs (ncdump, Python,
+/// ParaView) can read it while the run goes on. HDF5 is not crash-safe while a file is open for
+/// writing: a kill inside a flush (milliseconds per block) can damage the file; a resume from it
+/// is then refused with the first unreadable record named and the fix.
 ///
 /// Not thread-safe (nor is the netCDF-C library): use from one thread.
 
@@ -106,6 +110,9 @@ public:
   /// Throws core::InputError naming the file if netCDF cannot write (disk full, ...).
   void append(const BodyFrame& frame);
 
+  /// Write the staged records into the file now (append() does it every syncEvery records).
+  void flush();
+
   /// Flush and close. Afterwards append() throws std::logic_error. Idempotent.
   void close();
 
@@ -116,21 +123,27 @@ public:
 private:
   void check(int status, const char* what) const;
   void create(const std::filesystem::path& file, const std::vector<SeriesBody>& bodies, const std::string& history);
+  /// Open the old file for resume (checks its bodies), read its times; the records to keep.
+  std::size_t openForResume(int& oldNcid, const std::vector<SeriesBody>& bodies, std::string& history);
+  /// Copy the first `keep` records of every record variable from the old file.
+  void copyRecords(int oldNcid, std::size_t keep);
+  /// Refuse a resume from a file whose records cannot be read from `firstBad` on.
+  [[noreturn]] void refuseDamaged(std::size_t firstBad, const char* variable) const;
+  void closeOpenFile();
 
   BodySeriesSettings settings_;
   std::vector<std::int32_t> ids_;
-  int ncid_ = -1;
-  std::size_t records_ = 0;
-  std::size_t sinceSync_ = 0;
+  int ncid_ = -1;              ///< open only inside the constructor and flush()
+  bool closed_ = false;
+  std::size_t records_ = 0;    ///< in the file plus pending
+  std::size_t pending_ = 0;    ///< staged records not yet in the file (< syncEvery)
   double lastTime_ = 0.0;
-  // Variable ids.
-  int timeVar_ = -1, positionVar_ = -1, orientationVar_ = -1, velocityVar_ = -1, angularVar_ = -1,
-      contactCountVar_ = -1, maxForceVar_ = -1;
-  int externalForceVar_ = -1;
-  // Staging buffers, reused by append() (hot: one record per series interval).
-  std::vector<double> vec_, quat_;
-  std::vector<std::int32_t> ints_;
-  std::vector<double> scalars_;
+  std::vector<double> oldTimes_; ///< resume: the old file's record times
+  // Staged records (syncEvery records): time; position, velocity, angular velocity and hydro
+  // force (four blocks of syncEvery x bodies x 3); orientation; contact count; largest force.
+  std::vector<double> pendingTime_, pendingVec_, pendingQuat_;
+  std::vector<std::int32_t> pendingCount_;
+  std::vector<double> pendingForce_;
 };
 
 } // namespace armour::io
