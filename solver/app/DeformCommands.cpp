@@ -91,6 +91,7 @@ deformable::DeformableSettings bodySettings(const io::DeformableScene& s, double
   d.fBar = s.fBar;
   d.massDamping = s.massDamping;
   d.stepSafety = s.stepSafety;
+  d.massScaling = s.massScaling;
   for (const auto& h : s.halfSpaces) d.halfSpaces.push_back({h.point, h.normal});
   d.contactGradient = s.contactGradient;
   d.friction = s.friction;
@@ -107,6 +108,8 @@ void writeSummary(const fs::path& path, const deformable::DeformableBody& body, 
     out << "{\n";
     out << fmt::format("  \"time_s\": {},\n  \"steps\": {},\n  \"elements\": {},\n  \"nodes\": {},\n",
                        core::jsonNumber(body.time()), body.steps(), body.mesh().elementCount(), body.nodeCount());
+    out << fmt::format("  \"added_mass_kg\": {},\n  \"added_mass_elements\": {},\n",
+                       core::jsonNumber(body.massScaling().addedMass), body.massScaling().scaled);
     out << fmt::format("  \"time_step_s\": {},\n  \"samples\": {},\n", core::jsonNumber(body.stableStep().dt),
                        h.samples().size());
     const std::pair<const char*, const deformable::StressPeak*> peaks[3] = {
@@ -187,6 +190,13 @@ void runDeform(const DeformRequest& o) {
                 ? fmt::format(", contact {:.4g} rad/s", body.stableStep().contactFrequency)
                 : std::string(),
             body.settings().material.viscosity);
+  if (const auto& ms = body.massScaling(); scene.massScaling > 0.0) {
+    log->info("mass scaling (run.mass_scaling = {}): {} of {} elements heavier, {:.4g} kg added ({:.3g} % of {:.4g} kg; "
+              "at most {:.3g} % of a body's own mass); the smallest element {:.4g} m acts as {:.4g} m ({:.3g} times; the "
+              "contact may hold the step shorter)",
+              scene.massScaling, ms.scaled, body.mesh().elementCount(), ms.addedMass, 100.0 * ms.addedMass / ms.mass,
+              ms.mass, 100.0 * ms.largestPartFraction, ms.lengthMin, ms.length, ms.length / ms.lengthMin);
+  }
 
   deformable::StressHistory history;
   std::vector<io::CollectionEntry> frames;

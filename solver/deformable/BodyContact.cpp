@@ -65,13 +65,6 @@ double signedVolume(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& 
   return (p1 - p0).cross(p2 - p0).dot(p3 - p0) / 6.0;
 }
 
-std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
 
 } // namespace
 
@@ -81,25 +74,7 @@ BodyContact::BodyContact(const DeformableMesh& mesh, const std::vector<SurfaceTr
       dampingRatio_(dampingRatio), impedance_(impedance) {
   const int nen = mesh.nodesPerElement();
   const std::size_t nodes = mesh.nodeCount();
-  // Parts: union-find over the elements' nodes; parts numbered in order of their lowest node.
-  std::vector<std::int32_t> parent(nodes);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
-    for (int a = 1; a < nen; ++a) {
-      const auto r0 = findRoot(parent, mesh.element(e)[0]);
-      const auto r1 = findRoot(parent, mesh.element(e)[a]);
-      parent[std::max(r0, r1)] = std::min(r0, r1);
-    }
-  }
-  nodePart_.assign(nodes, -1);
-  std::vector<std::int32_t> rootPart(nodes, -1);
-  for (std::size_t n = 0; n < nodes; ++n) {
-    const auto r = findRoot(parent, static_cast<std::int32_t>(n));
-    if (rootPart[r] < 0) {
-      rootPart[r] = static_cast<std::int32_t>(partCount_++);
-    }
-    nodePart_[n] = rootPart[r];
-  }
+  nodePart_ = deformable::nodeParts(mesh, partCount_);
   trianglePart_.resize(triangles_.size());
   std::vector<char> onSurface(nodes, 0);
   for (std::size_t t = 0; t < triangles_.size(); ++t) {

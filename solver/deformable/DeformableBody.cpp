@@ -15,6 +15,10 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+/// The largest mass_scaling accepted (unit: -), ours: beyond a tenth the added mass is no longer a
+/// correction of a few elements.
+constexpr double kMaxMassScaling = 0.1;
+
 /// Share of the element mass per node: 4-node tets equal shares; 10-node HRZ (DeformableBody.hpp).
 double massShare(ElementOrder order, int localNode) {
   if (order == ElementOrder::Linear) {
@@ -27,6 +31,13 @@ void validateSettings(const DeformableSettings& s, const std::string& source) {
   validateMaterial(s.material, source + ": material");
   for (int k = 0; k < 3; ++k) {
     core::requireFinite(s.gravity[k], source + ": gravity", "m/s^2");
+  }
+  core::requireFinite(s.massScaling, source + ": mass_scaling", "-");
+  if (s.massScaling < 0.0 || s.massScaling > kMaxMassScaling) {
+    core::failInput(source + ": mass_scaling",
+                    "{}: the added mass must be between 0 (off) and {} of the body's mass; more changes the unit's "
+                    "inertia, not only its smallest elements (0.01 is a usual choice)",
+                    s.massScaling, kMaxMassScaling);
   }
   core::requireFinite(s.massDamping, source + ": mass_damping", "1/s");
   if (s.massDamping < 0.0) {
@@ -91,8 +102,16 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       core::failInput(source_, "element {} (nodes {}, {}, {}, {}) is inverted or flat; remesh the unit", e,
                       mesh_.element(e)[0], mesh_.element(e)[1], mesh_.element(e)[2], mesh_.element(e)[3]);
     }
+  }
+  std::vector<double> volumes(mesh_.elementCount());
+  for (std::size_t e = 0; e < volumes.size(); ++e) {
+    volumes[e] = geometry_[e].volume;
+  }
+  massScaling_ = deformable::massScaling(mesh_, volumes, settings_.material.density, settings_.massScaling);
+  for (std::size_t e = 0; e < mesh_.elementCount(); ++e) {
     for (int a = 0; a < nen; ++a) {
-      masses_[mesh_.element(e)[a]] += massShare(mesh_.order, a) * settings_.material.density * geometry_[e].volume;
+      masses_[mesh_.element(e)[a]] +=
+          massShare(mesh_.order, a) * settings_.material.density * geometry_[e].volume * massScaling_.factor[e];
     }
   }
   for (std::size_t n = 0; n < nodes; ++n) {
@@ -134,7 +153,8 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
     const double omegaBody = contactFrequency(mesh_, triangles, masses_, bodyContact_->gradientBound());
     omegaContact = std::sqrt(omegaContact * omegaContact + omegaBody * omegaBody);
   }
-  stable_ = deformable::stableStep(mesh_, settings_.material, settings_.stepSafety, omegaContact);
+  stable_ = deformable::stableStepForLength(massScaling_.length, massScaling_.element, settings_.material,
+                                            settings_.stepSafety, omegaContact);
   fixedAxes_.assign(nodes, 0U);
   prescribedVelocity_.assign(nodes, Vec3::Zero());
   externalForces_.assign(nodes, Vec3::Zero());

@@ -50,6 +50,11 @@ struct DeformableSettings {
   /// element bound for every shape measured (StableStep.hpp); the 10 % covers elements shortened
   /// by compression during the run (concrete strains stay below 1e-3).
   double stepSafety = 0.9;
+  /// Selective mass scaling (StableStep.hpp, MassScaling): the largest mass that may be added to
+  /// the shortest elements to lengthen the step, as a fraction of the body's mass (unit: -). 0 =
+  /// off. The added mass is mass like any other (gravity and inertia act on it): 0.01 makes the
+  /// model at most 1 % heavier, concentrated in the smallest elements (slivers of gmsh meshes).
+  double massScaling = 0.0;
   /// Static half-spaces the body may touch (a rigid anvil, a floor): frictionless potential
   /// contact (HalfSpaceContact.hpp). Empty: no contact.
   std::vector<HalfSpace> halfSpaces;
@@ -122,6 +127,8 @@ public:
   [[nodiscard]] const std::vector<ElementGeometry>& geometry() const { return geometry_; }
   [[nodiscard]] std::size_t nodeCount() const { return mesh_.nodeCount(); }
   [[nodiscard]] const std::vector<double>& masses() const { return masses_; } ///< lumped (unit: kg)
+  /// The mass scaling applied (factors 1 and no added mass when settings().massScaling is 0).
+  [[nodiscard]] const MassScaling& massScaling() const { return massScaling_; }
 
   [[nodiscard]] const std::vector<Vec3>& positions() const { return state_.positions; }
   [[nodiscard]] const std::vector<Vec3>& velocities() const { return state_.velocities; }
@@ -196,6 +203,7 @@ private:
   std::vector<ElementGeometry> geometry_;
   std::vector<double> masses_;
   StableStepEstimate stable_;
+  MassScaling massScaling_;
   std::vector<unsigned> fixedAxes_;
   std::vector<Vec3> prescribedVelocity_;
   std::vector<Vec3> externalForces_;

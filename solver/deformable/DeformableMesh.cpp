@@ -3,6 +3,7 @@
 
 #include "core/Error.hpp"
 
+#include <numeric>
 #include <unordered_map>
 
 namespace armour::deformable {
@@ -25,6 +26,14 @@ void checkTets(const geometry::TetMesh& tets, const char* source) {
                       t, volume);
     }
   }
+}
+
+std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
 }
 
 } // namespace
@@ -74,6 +83,32 @@ geometry::TetMesh mergeTetMeshes(const std::vector<geometry::TetMesh>& parts, co
     }
   }
   return out;
+}
+
+std::vector<std::int32_t> nodeParts(const DeformableMesh& mesh, std::size_t& count) {
+  const int nen = mesh.nodesPerElement();
+  const std::size_t nodes = mesh.nodeCount();
+  // Union-find over the elements' nodes.
+  std::vector<std::int32_t> parent(nodes);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
+    for (int a = 1; a < nen; ++a) {
+      const auto r0 = findRoot(parent, mesh.element(e)[0]);
+      const auto r1 = findRoot(parent, mesh.element(e)[a]);
+      parent[std::max(r0, r1)] = std::min(r0, r1);
+    }
+  }
+  count = 0;
+  std::vector<std::int32_t> part(nodes, -1);
+  std::vector<std::int32_t> rootPart(nodes, -1);
+  for (std::size_t n = 0; n < nodes; ++n) {
+    const auto r = findRoot(parent, static_cast<std::int32_t>(n));
+    if (rootPart[r] < 0) {
+      rootPart[r] = static_cast<std::int32_t>(count++);
+    }
+    part[n] = rootPart[r];
+  }
+  return part;
 }
 
 } // namespace armour::deformable

@@ -56,4 +56,8 @@ geometry::TetMesh mergeTetMeshes(const std::vector<geometry::TetMesh>& parts, co
 
 DeformableMesh makeDeformableMesh(const geometry::TetMesh& tets, ElementOrder order, const char* source = "tet mesh");
 
+/// The disconnected parts of a mesh (two nodes are in one part when an element links them): the
+/// part of each node, parts numbered in the order of their lowest node; `count` gets their number.
+std::vector<std::int32_t> nodeParts(const DeformableMesh& mesh, std::size_t& count);
+
 } // namespace armour::deformable

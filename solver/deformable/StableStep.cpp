@@ -23,16 +23,24 @@ double elementLength(const DeformableMesh& mesh, std::size_t e) {
 
 StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material, double safety,
                               double contactFrequency) {
-  StableStepEstimate out;
-  out.safety = safety;
-  out.lengthMin = std::numeric_limits<double>::infinity();
+  double lengthMin = std::numeric_limits<double>::infinity();
+  std::size_t element = 0;
   for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
     const double l = elementLength(mesh, e);
-    if (l < out.lengthMin) {
-      out.lengthMin = l;
-      out.element = e;
+    if (l < lengthMin) {
+      lengthMin = l;
+      element = e;
     }
   }
+  return stableStepForLength(lengthMin, element, material, safety, contactFrequency);
+}
+
+StableStepEstimate stableStepForLength(double lengthMin, std::size_t element, const MaterialSettings& material,
+                                       double safety, double contactFrequency) {
+  StableStepEstimate out;
+  out.safety = safety;
+  out.lengthMin = lengthMin;
+  out.element = element;
   out.waveSpeed = dilatationalWaveSpeed(material);
   out.dampingRatio = 2.0 * material.viscosity / (material.density * out.waveSpeed * out.lengthMin);
   const double xi = out.dampingRatio;
@@ -40,6 +48,89 @@ StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings
   const double omegaElement = 2.0 * out.waveSpeed / out.lengthMin;
   const double omega = std::sqrt(omegaElement * omegaElement + contactFrequency * contactFrequency);
   out.dt = safety * (2.0 / omega) * (std::sqrt(1.0 + xi * xi) - xi);
+  return out;
+}
+
+namespace {
+
+/// The largest L for which scaling the elements `order` (sorted by length) shorter than L to L
+/// adds at most `budget` of volume-equivalent (the added mass over rho).
+double targetLength(const std::vector<std::size_t>& order, const std::vector<double>& length,
+                    const std::vector<double>& volumes, double budget) {
+  // With the k shortest scaled the added volume is L^2 sum V_i / l_i^2 - sum V_i.
+  double sumV = 0.0, sumVoverL2 = 0.0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t e = order[k];
+    sumV += volumes[e];
+    sumVoverL2 += volumes[e] / (length[e] * length[e]);
+    const double L = std::sqrt((budget + sumV) / sumVoverL2);
+    const double next = k + 1 < order.size() ? length[order[k + 1]] : std::numeric_limits<double>::infinity();
+    if (L <= next) {
+      return std::max(L, length[e]);
+    }
+  }
+  return std::numeric_limits<double>::infinity(); // (not reached: the last L is accepted)
+}
+
+} // namespace
+
+MassScaling massScaling(const DeformableMesh& mesh, const std::vector<double>& volumes, double density,
+                        double maxAddedFraction) {
+  const std::size_t n = mesh.elementCount();
+  MassScaling out;
+  out.factor.assign(n, 1.0);
+  std::vector<double> length(n);
+  double volume = 0.0;
+  out.lengthMin = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < n; ++e) {
+    length[e] = elementLength(mesh, e);
+    volume += volumes[e];
+    if (length[e] < out.lengthMin) {
+      out.lengthMin = length[e];
+      out.element = e;
+    }
+  }
+  out.mass = density * volume;
+  out.length = out.lengthMin;
+  if (!(maxAddedFraction > 0.0)) {
+    return out;
+  }
+  // The budget is each body's (each disconnected part of the mesh: a unit and its anvil get a
+  // fraction of their own mass each); the step is set by the part whose L is the shortest, and the
+  // others scale to that L only.
+  std::size_t parts = 0;
+  const std::vector<std::int32_t> nodePart = nodeParts(mesh, parts);
+  std::vector<std::vector<std::size_t>> byPart(parts);
+  std::vector<double> partVolume(parts, 0.0);
+  for (std::size_t e = 0; e < n; ++e) {
+    const auto p = static_cast<std::size_t>(nodePart[static_cast<std::size_t>(mesh.element(e)[0])]);
+    byPart[p].push_back(e);
+    partVolume[p] += volumes[e];
+  }
+  out.length = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < parts; ++p) {
+    if (byPart[p].empty()) continue; // (a lone node: makeDeformableMesh leaves none)
+    // Ties broken by index: the same order, and so the same bits, on every machine.
+    std::sort(byPart[p].begin(), byPart[p].end(), [&](std::size_t a, std::size_t b) {
+      return length[a] < length[b] || (length[a] == length[b] && a < b);
+    });
+    out.length = std::min(out.length, targetLength(byPart[p], length, volumes, maxAddedFraction * partVolume[p]));
+  }
+  std::vector<double> partAdded(parts, 0.0);
+  for (std::size_t e = 0; e < n; ++e) {
+    if (length[e] < out.length) {
+      out.factor[e] = (out.length / length[e]) * (out.length / length[e]);
+      const double added = (out.factor[e] - 1.0) * density * volumes[e];
+      out.addedMass += added;
+      partAdded[static_cast<std::size_t>(nodePart[static_cast<std::size_t>(mesh.element(e)[0])])] += added;
+      ++out.scaled;
+    }
+  }
+  for (std::size_t p = 0; p < parts; ++p) {
+    if (partVolume[p] > 0.0) {
+      out.largestPartFraction = std::max(out.largestPartFraction, partAdded[p] / (density * partVolume[p]));
+    }
+  }
   return out;
 }
 

@@ -19,6 +19,7 @@
 #include "deformable/NeoHookean.hpp"
 
 #include <cstddef>
+#include <vector>
 
 namespace armour::deformable {
 
@@ -39,11 +40,37 @@ struct StableStepEstimate {
 /// Element length l_e (unit: m) of element e.
 [[nodiscard]] double elementLength(const DeformableMesh& mesh, std::size_t e);
 
+/// Selective mass scaling (ours; the usual remedy of explicit codes for a few small elements,
+/// docs/theory.md "Mass scaling"): element e's density is multiplied by s_e >= 1, which lengthens
+/// its own limit by sqrt(s_e) (c_d falls as 1 / sqrt(s_e)). Every element shorter than a target
+/// length L gets s_e = (L / l_e)^2, so none is shorter than L in effect, and L is the largest for
+/// which the mass added to each body (each disconnected part of the mesh) is at most
+/// `maxAddedFraction` of that body's mass (exact: the sum is a piecewise quadratic in L over the
+/// sorted lengths).
+struct MassScaling {
+  std::vector<double> factor;   ///< s_e per element (unit: -); 1 where unscaled
+  double length = 0.0;          ///< the target length L, the effective l_min (unit: m)
+  std::size_t scaled = 0;       ///< elements with s_e > 1
+  double addedMass = 0.0;       ///< sum (s_e - 1) rho V_e (unit: kg)
+  double mass = 0.0;            ///< the unscaled mass rho sum V_e (unit: kg)
+  double largestPartFraction = 0.0; ///< the largest added mass of a body over its own mass (unit: -)
+  std::size_t element = 0;      ///< the unscaled shortest element
+  double lengthMin = 0.0;       ///< its length, l_min without scaling (unit: m)
+};
+
+/// @pre volumes[e] > 0 is element e's volume; maxAddedFraction >= 0 (0: factors all 1, L = l_min).
+[[nodiscard]] MassScaling massScaling(const DeformableMesh& mesh, const std::vector<double>& volumes, double density,
+                                      double maxAddedFraction);
+
 /// @pre the mesh has elements; material validated; 0 < safety <= 1; contactFrequency >= 0.
 /// With contact, the element bound 2 c_d / l_min and omega_c combine as
 /// omega = sqrt((2 c_d / l_min)^2 + omega_c^2) (a surface node's frequency with its contact spring
 /// is at most that), and dt = safety (2 / omega) (sqrt(1 + xi^2) - xi).
 [[nodiscard]] StableStepEstimate stableStep(const DeformableMesh& mesh, const MaterialSettings& material,
                                             double safety, double contactFrequency = 0.0);
+/// The same from a given l_min (e.g. MassScaling::length) and the element that has it.
+[[nodiscard]] StableStepEstimate stableStepForLength(double lengthMin, std::size_t element,
+                                                     const MaterialSettings& material, double safety,
+                                                     double contactFrequency = 0.0);
 
 } // namespace armour::deformable

@@ -30,7 +30,7 @@ const KeyList kBodyKeys{"name",        "shape",    "volume", "tets", "shape_seed
 const KeyList kGridKeys{"counts", "spacing"};
 const KeyList kHalfSpaceKeys{"point", "normal"};
 const KeyList kContactKeys{"friction", "gradient", "penalty", "damping"};
-const KeyList kRunKeys{"duration", "step_safety", "frames_every", "stress_every", "checkpoint_every"};
+const KeyList kRunKeys{"duration", "step_safety", "mass_scaling", "frames_every", "stress_every", "checkpoint_every"};
 const KeyList kOutputKeys{"folder"};
 
 /// Largest tetrahedra asked of one shape: beyond this a size was probably given in the wrong unit.
@@ -197,6 +197,9 @@ DeformableScene readDeformableScene(const std::filesystem::path& file) {
   const Block r(ctx, top.get("run"), "run", kRunKeys);
   scene.duration = r.number("duration", {"s", kPositive, "0.008 (seed 002's drop)"});
   scene.stepSafety = r.number("step_safety", {"-", kFraction, "0.9"}, scene.stepSafety);
+  scene.massScaling = r.number("mass_scaling", {"-", kNonNegative, "0.01 (at most 1 % of the mass added); 0 = off"}, 0.0);
+  if (scene.massScaling > 0.1)
+    r.failValue("mass_scaling", "adds more than a tenth of the unit's mass; give at most 0.1 (0.01 is usual)");
   scene.framesEvery = r.number("frames_every", {"s", kNonNegative, "0.001; 0 = the first and last frames only"}, 0.0);
   scene.stressEvery = r.integer("stress_every", 1, "steps between samples of the extreme stresses", 5);
   scene.checkpointEvery = r.number("checkpoint_every", {"s of wall time", kPositive, "600"}, scene.checkpointEvery);

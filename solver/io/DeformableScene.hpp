@@ -56,6 +56,7 @@ struct DeformableScene {
   double massDamping = 0.0;           ///< unit: 1/s
   double duration = 0.01;             ///< simulated time (unit: s)
   double stepSafety = 0.9;            ///< of the stable step (unit: -)
+  double massScaling = 0.0;           ///< largest added mass over the mass, 0 = off (unit: -)
   double framesEvery = 0.0;           ///< VTU frame interval (unit: s); 0 = first and last only
   std::uint64_t stressEvery = 5;      ///< steps between stress samples (unit: -)
   double checkpointEvery = 600.0;     ///< wall time between checkpoints (unit: s)

@@ -60,7 +60,7 @@ struct Row {
 Quat lyingFlat() { return Quat(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Vec3::UnitX())); }
 
 Row deformableRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, double seconds,
-                  double speed) {
+                  double speed, double massScaling) {
   geo::TetrahedralizeOptions options;
   options.targetTetCount = elements;
   options.keepSurface = false;
@@ -74,11 +74,15 @@ Row deformableRow(const geo::TriangleMesh& surface, std::size_t elements, def::E
   }
   def::DeformableSettings settings; // seed 002's concrete, no viscosity
   settings.halfSpaces = {def::HalfSpace{Vec3(0.0, 0.0, lowest), Vec3::UnitZ()}};
+  settings.massScaling = massScaling;
   def::DeformableBody body(def::makeDeformableMesh(tets, order, "bench_solidity Core-Loc"), settings,
                            "bench_solidity Core-Loc");
   body.setVelocities(std::vector<Vec3>(body.nodeCount(), Vec3(0.0, 0.0, -speed)));
   Row row;
   row.model = order == def::ElementOrder::Linear ? "deformable, tet4" : "deformable, tet10 (F-bar)";
+  if (massScaling > 0.0) row.model += fmt::format(", mass scaling {} ({:.3g} % added to {} elements)", massScaling,
+                                                  100.0 * body.massScaling().addedMass / body.massScaling().mass,
+                                                  body.massScaling().scaled);
   row.elements = body.mesh().elementCount();
   row.dt = body.stableStep().dt;
   const geo::TetMeshQuality quality = geo::tetMeshQuality(tets);
@@ -156,12 +160,14 @@ Row rigidRow(const geo::TriangleMesh& surface, sim::ContactModel model, sim::Con
 int main(int argc, char** argv) {
   CLI::App app{"Rigid against deformable on one Core-Loc: seed 000's 'Solidity_R is about 50 times faster' (issue 26)"};
   std::size_t elements = 2500;
-  double volume = 5.0, seconds = 0.05, speed = 0.5;
+  double volume = 5.0, seconds = 0.05, speed = 0.5, massScaling = 0.0;
   app.add_option("--elements", elements, "tets of the deformable unit and contact elements of the rigid one (seed 000: ~2500)")
       ->check(CLI::Range(std::size_t{50}, std::size_t{200000}));
   app.add_option("--volume", volume, "unit volume (m^3; seed 000's units are 5 m^3)")->check(CLI::Range(0.01, 100.0));
   app.add_option("--seconds", seconds, "simulated time of every row (s)")->check(CLI::Range(1e-4, 10.0));
   app.add_option("--speed", speed, "downward speed at first touch (m/s; seed 002's drop: 0.5)")->check(CLI::Range(0.0, 10.0));
+  app.add_option("--mass-scaling", massScaling, "also the deformable rows with this mass scaling (added mass / mass; 0 = none)")
+      ->check(CLI::Range(0.0, 0.1));
   CLI11_PARSE(app, argc, argv);
   omp_set_num_threads(1);
 
@@ -176,15 +182,17 @@ int main(int argc, char** argv) {
       longestSurface = std::max(longestSurface, l);
     }
   }
-  fmt::print("bench_solidity --elements {} --volume {} --seconds {} --speed {}\nbuild: {}\nload before: {}\nthe Core-Loc's surface: {} "
-             "triangles, edges {:.4f} to {:.3f} m\n\n", elements, volume, seconds, speed, armour::core::buildInfo(), armour::bench::loadAverages(), surface.triangles.size(), shortestSurface,
+  fmt::print("bench_solidity --elements {} --volume {} --seconds {} --speed {} --mass-scaling {}\nbuild: {}\nload before: {}\nthe Core-Loc's surface: {} "
+             "triangles, edges {:.4f} to {:.3f} m\n\n", elements, volume, seconds, speed, massScaling, armour::core::buildInfo(), armour::bench::loadAverages(), surface.triangles.size(), shortestSurface,
              longestSurface);
   std::vector<Row> rows;
   rows.push_back(rigidRow(surface, sim::ContactModel::Fdem, sim::ContactSolverKind::Penalty, elements, seconds, speed));
   rows.push_back(rigidRow(surface, sim::ContactModel::LevelSet, sim::ContactSolverKind::Penalty, elements, seconds, speed));
   rows.push_back(rigidRow(surface, sim::ContactModel::LevelSet, sim::ContactSolverKind::Constraint, elements, seconds, speed));
-  rows.push_back(deformableRow(surface, elements, def::ElementOrder::Linear, seconds, speed));
-  rows.push_back(deformableRow(surface, elements, def::ElementOrder::Quadratic, seconds, speed));
+  for (const double ms : massScaling > 0.0 ? std::vector<double>{0.0, massScaling} : std::vector<double>{0.0}) {
+    rows.push_back(deformableRow(surface, elements, def::ElementOrder::Linear, seconds, speed, ms));
+    rows.push_back(deformableRow(surface, elements, def::ElementOrder::Quadratic, seconds, speed, ms));
+  }
   const double reference = rows.front().cpu / rows.front().seconds;
   fmt::print("| model | elements | step (s) | steps | thread CPU (s) | CPU per simulated s | / rigid fdem | lowest point at the "
              "end, from the floor (mm) | notes |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n");

@@ -103,6 +103,10 @@ TEST(DeformableScene, ErrorsNameTheKeyTheValueAndTheFix) {
        "run.duration = 0: must be > 0"},
       {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0], tets: 3000000}\nrun: {duration: 1}\n",
        "more than 2000000 tetrahedra"},
+      {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\nrun: {duration: 1, mass_scaling: 0.5}\n",
+       "run.mass_scaling = 0.5: adds more than a tenth of the unit's mass; give at most 0.1"},
+      {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\nrun: {duration: 1, mass_scaling: -0.01}\n",
+       "run.mass_scaling = -0.01: must be >= 0"},
   };
   for (const auto& c : cases) {
     const std::string message = errorOf(c.text);
