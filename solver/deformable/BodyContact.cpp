@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <omp.h>
+
 namespace armour::deformable {
 namespace {
 
@@ -196,43 +198,87 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
     }
   }
   std::sort(bins.begin(), bins.end());
-  std::vector<std::int32_t> candidates;
-  for (std::size_t t = 0; t < triangles_.size(); ++t) {
-    Eigen::AlignedBox3d box;
-    for (const auto n : triangles_[t]) {
-      box.extend(x[n]);
+  // Triangles in parallel, each pair's force computed into a record; then the records applied in
+  // the serial order (triangle, then target element): the same sums as one thread, so 1 and N
+  // threads give the same bits.
+  const auto triangleCount = static_cast<std::int64_t>(triangles_.size());
+  std::vector<std::vector<PairForce>> found;
+  std::vector<std::size_t> candidatePairs;
+#pragma omp parallel
+  {
+#pragma omp single
+    {
+      found.resize(static_cast<std::size_t>(omp_get_num_threads()));
+      candidatePairs.assign(found.size(), 0);
     }
-    if (!nearOtherPart(box, trianglePart_[t])) {
-      continue;
-    }
-    const auto lo = cellOf(box.min());
-    const auto hi = cellOf(box.max());
-    candidates.clear();
-    for (int i = lo[0]; i <= hi[0]; ++i) {
-      for (int j = lo[1]; j <= hi[1]; ++j) {
-        for (int l = lo[2]; l <= hi[2]; ++l) {
-          const auto k = key(i, j, l);
-          auto it = std::lower_bound(bins.begin(), bins.end(), std::make_pair(k, std::int32_t{-1}));
-          for (; it != bins.end() && it->first == k; ++it) {
-            if (tetPart_[it->second] != trianglePart_[t] && boxes[it->second].intersects(box)) {
-              candidates.push_back(it->second);
+    auto& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+    std::size_t& myCandidates = candidatePairs[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<std::int32_t> candidates;
+#pragma omp for schedule(dynamic, 64)
+    for (std::int64_t ti = 0; ti < triangleCount; ++ti) {
+      const auto t = static_cast<std::size_t>(ti);
+      Eigen::AlignedBox3d box;
+      for (const auto n : triangles_[t]) {
+        box.extend(x[n]);
+      }
+      if (!nearOtherPart(box, trianglePart_[t])) {
+        continue;
+      }
+      const auto lo = cellOf(box.min());
+      const auto hi = cellOf(box.max());
+      candidates.clear();
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        for (int j = lo[1]; j <= hi[1]; ++j) {
+          for (int l = lo[2]; l <= hi[2]; ++l) {
+            const auto k = key(i, j, l);
+            auto it = std::lower_bound(bins.begin(), bins.end(), std::make_pair(k, std::int32_t{-1}));
+            for (; it != bins.end() && it->first == k; ++it) {
+              if (tetPart_[it->second] != trianglePart_[t] && boxes[it->second].intersects(box)) {
+                candidates.push_back(it->second);
+              }
             }
           }
         }
       }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      myCandidates += candidates.size();
+      for (const auto k : candidates) {
+        PairForce f;
+        if (pairForce(t, static_cast<std::size_t>(k), x, v, f)) {
+          mine.push_back(f);
+        }
+      }
     }
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    stats.candidatePairs += candidates.size();
-    for (const auto k : candidates) {
-      pairForces(t, static_cast<std::size_t>(k), x, v, forces, stats);
+  }
+  // Each thread's records are in triangle order (a triangle is one thread's); merged by triangle,
+  // a triangle's records keep their target order.
+  std::vector<PairForce> all;
+  for (auto& f : found) {
+    all.insert(all.end(), f.begin(), f.end());
+  }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const PairForce& a, const PairForce& b) { return a.triangle < b.triangle; });
+  for (const std::size_t c : candidatePairs) {
+    stats.candidatePairs += c;
+  }
+  for (const PairForce& f : all) {
+    ++stats.touchingPairs;
+    stats.normalForce += f.contactorShare.sum();
+    const auto& tri = triangles_[f.triangle];
+    const auto& c = tets_[f.target];
+    for (int k = 0; k < 3; ++k) {
+      forces[tri[k]] -= f.contactorShare[k] * f.normal;
+    }
+    for (int n = 0; n < 4; ++n) {
+      forces[c[n]] += f.targetShare[n] * f.normal;
     }
   }
   return stats;
 }
 
-void BodyContact::pairForces(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x,
-                             const std::vector<Vec3>& v, std::vector<Vec3>& forces, BodyContactStats& stats) const {
+bool BodyContact::pairForce(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x,
+                            const std::vector<Vec3>& v, PairForce& out) const {
   const auto& c = tets_[target];
   const auto& tri = triangles_[triangle];
   // Barycentric coordinates of the element at the triangle's corners: L(i, corner).
@@ -240,7 +286,7 @@ void BodyContact::pairForces(std::size_t triangle, std::size_t target, const std
   edges << x[c[1]] - x[c[0]], x[c[2]] - x[c[0]], x[c[3]] - x[c[0]];
   const double det = edges.determinant();
   if (!(det > 0.0)) {
-    return; // an inverted element: DeformableBody stops on it
+    return false; // an inverted element: DeformableBody stops on it
   }
   const Eigen::Matrix3d inverse = edges.inverse();
   Eigen::Matrix<double, 4, 3> L;
@@ -251,13 +297,13 @@ void BodyContact::pairForces(std::size_t triangle, std::size_t target, const std
   }
   for (int i = 0; i < 4; ++i) {
     if (L.row(i).maxCoeff() <= 0.0) {
-      return; // the triangle is outside face i's plane
+      return false; // the triangle is outside face i's plane
     }
   }
   const Vec3 areaVector = 0.5 * (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
   const double area = areaVector.norm();
   if (!(area > 0.0)) {
-    return;
+    return false;
   }
   const Vec3 normal = areaVector / area;
   Eigen::Vector3d contactorShare = Eigen::Vector3d::Zero(); // integral of P N_a da
@@ -294,16 +340,14 @@ void BodyContact::pairForces(std::size_t triangle, std::size_t target, const std
     }
   }
   if (contactorShare.sum() == 0.0) {
-    return;
+    return false;
   }
-  ++stats.touchingPairs;
-  stats.normalForce += contactorShare.sum();
-  for (int k = 0; k < 3; ++k) {
-    forces[tri[k]] -= contactorShare[k] * normal;
-  }
-  for (int n = 0; n < 4; ++n) {
-    forces[c[n]] += targetShare[n] * normal;
-  }
+  out.triangle = triangle;
+  out.target = target;
+  out.normal = normal;
+  out.contactorShare = contactorShare;
+  out.targetShare = targetShare;
+  return true;
 }
 
 } // namespace armour::deformable

@@ -44,8 +44,9 @@
 /// skipped (so 288 rocks apart cost their own checks, not 288 x 288). The remaining target tets (those with a node on the surface) are binned
 /// by their bounding boxes on a uniform grid of cell = their largest box edge, as a sorted list of
 /// (cell, element) pairs; each surface triangle takes the elements of the cells its box covers.
-/// All sums run serially in a fixed order (triangle, then element index): the forces do not
-/// depend on the thread count.
+/// Threads: the triangles are shared among the threads (OpenMP), each pair's forces computed into
+/// a record; the records are then added serially in a fixed order (triangle, then element index),
+/// so the sums, and the bits, do not depend on the thread count.
 
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/HalfSpaceContact.hpp"
@@ -83,8 +84,18 @@ public:
   [[nodiscard]] double penalty() const { return penalty_; }
 
 private:
-  void pairForces(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x, const std::vector<Vec3>& v,
-                  std::vector<Vec3>& forces, BodyContactStats& stats) const;
+  /// One (triangle, target element) pair's nodal forces: f_contactor = -contactorShare_k n on the
+  /// triangle's corners, f_target = targetShare_b n on the element's.
+  struct PairForce {
+    std::size_t triangle = 0;
+    std::size_t target = 0;
+    Vec3 normal = Vec3::Zero();
+    Eigen::Vector3d contactorShare = Eigen::Vector3d::Zero();
+    Eigen::Vector4d targetShare = Eigen::Vector4d::Zero();
+  };
+  /// The pair's forces into `out`; false when they are zero (not touching, or an inverted element).
+  bool pairForce(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x, const std::vector<Vec3>& v,
+                 PairForce& out) const;
 
   using Tet4 = std::array<std::int32_t, 4>;
   std::vector<SurfaceTriangle> triangles_;

@@ -122,6 +122,7 @@ public:
   DeformableBody(DeformableMesh mesh, const DeformableSettings& settings, std::string source = "deformable body");
 
   [[nodiscard]] const DeformableMesh& mesh() const { return mesh_; }
+  [[nodiscard]] const std::string& source() const { return source_; } ///< the name given, for messages
   [[nodiscard]] const DeformableSettings& settings() const { return settings_; }
   [[nodiscard]] const ElementModel& model() const { return model_; }
   [[nodiscard]] const std::vector<ElementGeometry>& geometry() const { return geometry_; }

@@ -24,6 +24,8 @@
 #include "benchmarks/BenchClock.hpp"
 #include "core/BuildInfo.hpp"
 #include "deformable/DeformableBody.hpp"
+#include "deformable/QuasiStatic.hpp"
+#include "deformable/StressFields.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "geometry/Tetrahedralizer.hpp"
 #include "simulation/World.hpp"
@@ -155,6 +157,40 @@ Row rigidRow(const geo::TriangleMesh& surface, sim::ContactModel model, sim::Con
   return row;
 }
 
+/// The cost of the quasi-static stage of `armour stress` on this unit: the stiffness assembled
+/// and factored once, then load cases (two opposite point forces at the ends of the unit's long
+/// axis and one across it, spread over 0.1 m), each a back substitution and the element stresses.
+void quasiStaticRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, int cases) {
+  geo::TetrahedralizeOptions options;
+  options.targetTetCount = elements;
+  options.keepSurface = false;
+  const geo::TetMesh tets = geo::tetrahedralize(surface, options);
+  def::DeformableSettings settings;
+  const def::DeformableBody body(def::makeDeformableMesh(tets, order, "Core-Loc"), settings, "Core-Loc");
+  const double cpu0 = threadCpuNow();
+  const def::QuasiStaticUnit unit(body);
+  const double factorCpu = threadCpuNow() - cpu0;
+  Vec3 lo = body.mesh().nodes.front(), hi = lo;
+  for (const auto& p : body.mesh().nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 c = 0.5 * (lo + hi);
+  double largest = 0.0;
+  const double cpu1 = threadCpuNow();
+  for (int k = 0; k < cases; ++k) {
+    const double F = 1e5 * (1.0 + 0.01 * k);
+    const std::vector<def::PointLoad> loads{{Vec3(lo.x(), c.y(), c.z()), Vec3(F, 0.0, 0.0)},
+                                            {Vec3(hi.x(), c.y(), c.z()), Vec3(-F, 0.0, 0.3 * F)}};
+    const auto r = unit.solve(loads, Vec3::Zero(), 0.1);
+    for (const auto& s : r.stress) largest = std::max(largest, def::summarizeStress(s).principal.x());
+  }
+  const double solveCpu = (threadCpuNow() - cpu1) / cases;
+  fmt::print("| quasi-static, {} | {} | {} | {:.3f} | {:.2f} | {:.0f} | {:.3g} MPa |\n",
+             order == def::ElementOrder::Linear ? "tet4" : "tet10 (F-bar)", body.mesh().elementCount(),
+             3 * body.nodeCount(), factorCpu, 1e3 * solveCpu, 60.0 / 0.01 * solveCpu, 1e-6 * largest);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -166,6 +202,9 @@ int main(int argc, char** argv) {
   app.add_option("--volume", volume, "unit volume (m^3; seed 000's units are 5 m^3)")->check(CLI::Range(0.01, 100.0));
   app.add_option("--seconds", seconds, "simulated time of every row (s)")->check(CLI::Range(1e-4, 10.0));
   app.add_option("--speed", speed, "downward speed at first touch (m/s; seed 002's drop: 0.5)")->check(CLI::Range(0.0, 10.0));
+  int quasiStaticCases = 0;
+  app.add_option("--quasi-static", quasiStaticCases, "also time this many load cases of the quasi-static stress stage")
+      ->check(CLI::Range(0, 100000));
   app.add_option("--mass-scaling", massScaling, "also the deformable rows with this mass scaling (added mass / mass; 0 = none)")
       ->check(CLI::Range(0.0, 0.1));
   CLI11_PARSE(app, argc, argv);
@@ -199,6 +238,12 @@ int main(int argc, char** argv) {
   for (const Row& r : rows) {
     fmt::print("| {} | {} | {:.3g} | {} | {:.3f} | {:.3g} | {:.3g} | {:.2f} | {} |\n", r.model, r.elements, r.dt, r.steps,
                r.cpu, r.cpu / r.seconds, r.cpu / r.seconds / reference, 1e3 * r.lowest, r.note);
+  }
+  if (quasiStaticCases > 0) {
+    fmt::print("\n| stage | elements | unknowns | assemble and factor, CPU (s) | per load case, CPU (ms) | per storm minute at "
+               "0.01 s records, CPU (s) | largest sigma_1 of the cases |\n|---|---:|---:|---:|---:|---:|---:|\n");
+    quasiStaticRow(surface, elements, def::ElementOrder::Linear, quasiStaticCases);
+    quasiStaticRow(surface, elements, def::ElementOrder::Quadratic, quasiStaticCases);
   }
   fmt::print("\nload after: {}\n", armour::bench::loadAverages());
   return 0;
