@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "deformable/DeformableCheckpoint.hpp"
+#include "core/Hash.hpp"
+#include <fmt/format.h>
+#include <sstream>
 
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
@@ -46,7 +49,49 @@ std::vector<Vec3> getVectors(std::istream& in, std::size_t count, const std::str
   return values;
 }
 
+/// The first line where two identity texts differ, as "'then' then, 'now' now".
+std::string firstDifference(const std::string& then, const std::string& now) {
+  std::istringstream a(then), b(now);
+  std::string la, lb;
+  while (true) {
+    const bool ha = static_cast<bool>(std::getline(a, la));
+    const bool hb = static_cast<bool>(std::getline(b, lb));
+    if (!ha && !hb) return "";
+    if (!ha) la = "(nothing)";
+    if (!hb) lb = "(nothing)";
+    if (la != lb) return fmt::format("'{}' then, '{}' now", la, lb);
+  }
+}
+
 } // namespace
+
+std::string setupIdentity(const DeformableBody& body) {
+  const DeformableMesh& mesh = body.mesh();
+  std::uint64_t h = core::fnv1a(std::string_view(reinterpret_cast<const char*>(mesh.nodes.data()),
+                                                 mesh.nodes.size() * sizeof(Vec3)));
+  h = core::fnv1a(std::string_view(reinterpret_cast<const char*>(mesh.connectivity.data()),
+                                   mesh.connectivity.size() * sizeof(mesh.connectivity[0])),
+                  h);
+  const DeformableSettings& s = body.settings();
+  std::string out = fmt::format("mesh = {} nodes, {} elements of {} nodes, fnv1a64 {:016x}\n", mesh.nodeCount(),
+                                mesh.elementCount(), mesh.nodesPerElement(), h);
+  out += fmt::format("material.density = {} kg/m^3\nmaterial.young_modulus = {} Pa\nmaterial.poisson_ratio = {}\n"
+                     "material.viscosity = {} Pa s\n",
+                     s.material.density, s.material.youngModulus, s.material.poissonRatio, s.material.viscosity);
+  out += fmt::format("gravity = [{}, {}, {}] m/s^2\nf_bar = {}\nmass_damping = {} 1/s\nstep_safety = {}\n"
+                     "mass_scaling = {}\n",
+                     s.gravity.x(), s.gravity.y(), s.gravity.z(), s.fBar, s.massDamping, s.stepSafety, s.massScaling);
+  for (std::size_t k = 0; k < s.halfSpaces.size(); ++k) {
+    const auto& hs = s.halfSpaces[k];
+    out += fmt::format("half_spaces[{}] = point [{}, {}, {}] m, normal [{}, {}, {}]\n", k, hs.point.x(), hs.point.y(),
+                       hs.point.z(), hs.normal.x(), hs.normal.y(), hs.normal.z());
+  }
+  out += fmt::format("contact.gradient = {} Pa/m\ncontact.friction = {}\ncontact.friction_stiffness_ratio = {}\n"
+                     "contact.rigid = {}\ncontact.bodies = {}\ncontact.penalty = {} Pa\ncontact.damping = {}\n",
+                     s.contactGradient, s.friction, s.frictionStiffnessRatio, s.rigidContact, s.bodyContact,
+                     s.contactPenalty, s.contactDamping);
+  return out;
+}
 
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles for the binary layout");
 
@@ -71,6 +116,10 @@ void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem
         putVectors(out, s.frictionAnchors);
         out.write(reinterpret_cast<const char*>(s.frictionActive.data()),
                   static_cast<std::streamsize>(s.frictionActive.size()));
+        // Version 3: the setup it belongs to (setupIdentity), so that a restart with another is refused.
+        const std::string identity = setupIdentity(body);
+        put(out, static_cast<std::uint64_t>(identity.size()));
+        out.write(identity.data(), static_cast<std::streamsize>(identity.size()));
       },
       true);
 }
@@ -87,7 +136,7 @@ void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody&
     core::failInput(file, "not a deformable-body checkpoint (no ARMDEF01 header); give the file the run wrote");
   }
   const auto version = get<std::uint32_t>(in, file, "the version");
-  if (version != 1 && version != kDeformableCheckpointVersion) {
+  if (version < 1 || version > kDeformableCheckpointVersion) {
     core::failInput(file, "format version {}, this build reads 1 to {}; restart with the armour build that wrote it",
                     version, kDeformableCheckpointVersion);
   }
@@ -119,6 +168,23 @@ void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody&
     in.read(reinterpret_cast<char*>(state.frictionActive.data()), static_cast<std::streamsize>(anchors));
     if (!in) {
       core::failInput(file, "the file ends inside the friction flags: it is truncated; use an earlier checkpoint");
+    }
+  }
+  if (version >= 3) {
+    const auto length = get<std::uint64_t>(in, file, "the setup's length");
+    if (length > (std::uint64_t{1} << 24)) {
+      core::failInput(file, "the setup text claims {} bytes: the file is damaged; use an earlier checkpoint", length);
+    }
+    std::string identity(length, '\0');
+    in.read(identity.data(), static_cast<std::streamsize>(length));
+    if (!in) {
+      core::failInput(file, "the file ends inside the setup text: it is truncated; use an earlier checkpoint");
+    }
+    const std::string now = setupIdentity(body);
+    if (identity != now) {
+      core::failInput(file, "was written for another setup: {}. Restart with the scene that wrote it, or run again "
+                            "without --restart",
+                      firstDifference(identity, now));
     }
   }
   body.restore(state, file);

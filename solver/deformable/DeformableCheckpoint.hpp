@@ -7,18 +7,27 @@
 ///   uint64 nodes, uint64 elements, uint64 steps, double time, uint8 accelerations ready,
 ///   then nodes x 3 doubles each of positions, velocities and accelerations; from version 2, uint64
 ///   friction anchors A (0 without friction), A x 3 doubles of anchors and A bytes of their flags.
-///   Version 1 files (no anchors) are still read.
-/// The mesh, material and boundary conditions are not stored: they come from the setup, and the
-/// reader refuses a file whose node and element counts or element order differ. Written
+///   From version 3, uint64 length L and L bytes of text: setupIdentity() of the body that wrote
+///   it. Version 1 and 2 files (no anchors; no setup text) are still read.
+/// The mesh, material and boundary conditions are not stored: they come from the setup. The reader
+/// refuses a file whose node and element counts or element order differ, and (version 3) one
+/// whose setup text differs from the body's, naming the first line that changed. Boundary
+/// conditions (fixed nodes, external forces, initial velocities) are not in the text. Written
 /// atomically (core/AtomicFile.hpp).
 
 #include "deformable/DeformableBody.hpp"
 
 #include <filesystem>
+#include <string>
 
 namespace armour::deformable {
 
-inline constexpr std::uint32_t kDeformableCheckpointVersion = 2;
+inline constexpr std::uint32_t kDeformableCheckpointVersion = 3;
+
+/// The setup a checkpoint belongs to, one "key = value" line each: the mesh (counts and a hash of
+/// its nodes and connectivity), the material, gravity, F-bar, damping, step safety, mass scaling,
+/// half-spaces and contact settings (DeformableSettings).
+[[nodiscard]] std::string setupIdentity(const DeformableBody& body);
 
 /// Throws core::InputError naming the path if it cannot be written.
 void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem::path& path);

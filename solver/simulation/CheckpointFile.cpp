@@ -4,6 +4,7 @@
 #include "core/AtomicFile.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
+#include "core/Hash.hpp"
 #include "core/ProbeInChild.hpp"
 
 #include <fmt/format.h>
@@ -39,16 +40,7 @@ constexpr const char* kKeyComment =
 // Hashing
 // ---------------------------------------------------------------------------------------------
 
-constexpr std::uint64_t kFnvOffset = 14695981039346656037ull;
-constexpr std::uint64_t kFnvPrime = 1099511628211ull;
-
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = kFnvOffset) {
-  for (const char c : bytes) {
-    h ^= static_cast<unsigned char>(c);
-    h *= kFnvPrime;
-  }
-  return h;
-}
+using core::fnv1a;
 
 /// A mesh file by its content, not its place: "<N bytes, fnv1a64 H>".
 std::string fileIdentity(const fs::path& file) {

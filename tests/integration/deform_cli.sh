@@ -46,6 +46,15 @@ done
 [[ -s "$out/split/run.1.log" ]] || fail "restart: the first run's log was not kept as run.1.log"
 
 # Refusals, each naming what to fix.
+# A restart with another material (same mesh) is refused naming the change; the checkpoint stays.
+sed 's/young_modulus: 26.6e9/young_modulus: 30e9/' "$cases/vcross-drop-smoke.yaml" > "$out/stiffer.yaml"
+cp -r "$out/split" "$out/stiffer"
+if "$armour" --log-level warn deform "$out/stiffer.yaml" -o "$out/stiffer" --restart 2> "$out/stiffer.err"; then
+  fail "a restart with another material was accepted"
+fi
+grep -q "was written for another setup: 'material.young_modulus = 26600000000 Pa' then, 'material.young_modulus = 30000000000 Pa' now" "$out/stiffer.err" \
+  || fail "changed material: $(cat "$out/stiffer.err")"
+cmp "$out/split/checkpoint.bin" "$out/stiffer/checkpoint.bin" || fail "a refused restart changed the checkpoint"
 if deform -o "$out/none" --restart 2> "$out/none.err"; then fail "--restart without a checkpoint was accepted"; fi
 grep -q "no checkpoint to continue from" "$out/none.err" || fail "--restart without a checkpoint: $(cat "$out/none.err")"
 sed 's/poisson_ratio: 0.205/poisson_ratio: 0.5/' "$scene" > "$out/bad.yaml"

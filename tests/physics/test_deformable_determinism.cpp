@@ -137,6 +137,37 @@ TEST(DeformableDeterminism, BadCheckpointsAreRefused) {
             std::string::npos);
 }
 
+TEST(DeformableDeterminism, ACheckpointOfAnotherSetupIsRefusedNamingTheChange) {
+  // Same mesh counts, other material: before format version 3 this continued silently with the
+  // new material. Now the first changed line of the setup is named, and the body is untouched.
+  auto body = loadedBar();
+  run(body, 10);
+  const auto file = scratch("setup.bin");
+  writeDeformableCheckpoint(body, file);
+  DeformableSettings stiffer = body.settings();
+  stiffer.material.youngModulus = 30e9;
+  DeformableBody other(body.mesh(), stiffer, "bar");
+  const auto message = inputErrorOf([&] { readDeformableCheckpoint(file, other); });
+  EXPECT_NE(message.find("was written for another setup: 'material.young_modulus = 26600000000 Pa' then, "
+                         "'material.young_modulus = 30000000000 Pa' now"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(other.steps(), 0u);
+  // A mesh with one node moved by 1 mm: the mesh line differs.
+  DeformableMesh moved = body.mesh();
+  moved.nodes[5].x() += 1e-3;
+  DeformableBody shifted(moved, body.settings(), "bar");
+  EXPECT_NE(inputErrorOf([&] { readDeformableCheckpoint(file, shifted); }).find("'mesh = "), std::string::npos);
+  // The same setup reads (and a mass-scaling change is refused too).
+  DeformableBody same(body.mesh(), body.settings(), "bar");
+  EXPECT_NO_THROW(readDeformableCheckpoint(file, same));
+  DeformableSettings scaled = body.settings();
+  scaled.massScaling = 0.01;
+  DeformableBody heavier(body.mesh(), scaled, "bar");
+  EXPECT_NE(inputErrorOf([&] { readDeformableCheckpoint(file, heavier); }).find("'mass_scaling = 0' then"),
+            std::string::npos);
+}
+
 TEST(DeformableDeterminism, VtuFrameReadsBackWithItsFields) {
   auto body = loadedBar();
   run(body, 50);
