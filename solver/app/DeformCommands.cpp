@@ -182,10 +182,15 @@ void runDeform(const DeformRequest& o) {
   }
   body.setVelocities(velocity);
   const double dt = body.stableStep().dt;
-  log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: smallest element {:.4g} m{}); "
+  log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: {}{}); "
             "viscosity {:.4g} Pa s",
             body.mesh().elementCount(), scene.quadratic ? "tet10" : "tet4", body.nodeCount(), dt, scene.stepSafety,
-            body.stableStep().lengthMin,
+            body.stableStep().meshBound
+                ? fmt::format("the mesh's frequency bound {:.4g} rad/s (Gershgorin; the smallest element alone would "
+                              "give {:.4g} rad/s)",
+                              body.stableStep().meshFrequency,
+                              2.0 * body.stableStep().waveSpeed / body.massScaling().length)
+                : fmt::format("smallest element {:.4g} m", body.stableStep().lengthMin),
             body.stableStep().contactFrequency > 0.0
                 ? fmt::format(", contact {:.4g} rad/s", body.stableStep().contactFrequency)
                 : std::string(),

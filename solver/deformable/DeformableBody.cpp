@@ -153,8 +153,17 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
     const double omegaBody = contactFrequency(mesh_, triangles, masses_, bodyContact_->gradientBound());
     omegaContact = std::sqrt(omegaContact * omegaContact + omegaBody * omegaBody);
   }
-  stable_ = deformable::stableStepForLength(massScaling_.length, massScaling_.element, settings_.material,
-                                            settings_.stepSafety, omegaContact);
+  // Two rigorous bounds on the mesh's highest frequency: the element one (2 c_d / l over the
+  // elements, with mass scaling's effective lengths) and Gershgorin's on the assembled mesh; the
+  // lower sets the step.
+  const double omegaMesh = meshFrequencyBound(mesh_, geometry_, model_, masses_);
+  const double waveSpeed = dilatationalWaveSpeed(settings_.material);
+  const bool meshBound = omegaMesh < 2.0 * waveSpeed / massScaling_.length;
+  stable_ = deformable::stableStepForLength(meshBound ? 2.0 * waveSpeed / omegaMesh : massScaling_.length,
+                                            massScaling_.element, settings_.material, settings_.stepSafety,
+                                            omegaContact);
+  stable_.meshBound = meshBound;
+  stable_.meshFrequency = omegaMesh;
   fixedAxes_.assign(nodes, 0U);
   prescribedVelocity_.assign(nodes, Vec3::Zero());
   externalForces_.assign(nodes, Vec3::Zero());
@@ -325,9 +334,14 @@ void DeformableBody::checkStep(double dt) const {
   }
   if (dt > stable_.dt) {
     core::failInput(source_,
-                    "time step {} s is above the stable limit {} s = safety {} x l_min {} m (element {}) / c_d {} m/s"
+                    "time step {} s is above the stable limit {} s = safety {} x {} / c_d {} m/s"
                     "{}{}; use a step of at most {} s",
-                    dt, stable_.dt, stable_.safety, stable_.lengthMin, stable_.element, stable_.waveSpeed,
+                    dt, stable_.dt, stable_.safety,
+                    stable_.meshBound
+                        ? fmt::format("l = 2 c_d / omega_mesh = {} m (the mesh's Gershgorin bound, omega_mesh = {} rad/s)",
+                                      stable_.lengthMin, stable_.meshFrequency)
+                        : fmt::format("l_min {} m (element {})", stable_.lengthMin, stable_.element),
+                    stable_.waveSpeed,
                     stable_.contactFrequency > 0.0
                         ? fmt::format(", lowered by the contact (omega_c = {} rad/s, G = {} Pa/m)",
                                       stable_.contactFrequency, contactGradient_)

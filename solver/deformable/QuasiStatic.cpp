@@ -12,33 +12,6 @@
 #include <limits>
 
 namespace armour::deformable {
-namespace {
-
-/// The element stiffness at rest by central differences of the internal forces (F-bar and all):
-/// column j is d f / d x_j. Symmetrised (the exact tangent is symmetric; the differences leave
-/// O(h^2) asymmetry).
-Eigen::MatrixXd elementStiffness(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& X) {
-  const int nen = static_cast<int>(X.rows());
-  const int n = 3 * nen;
-  Eigen::MatrixXd K(n, n);
-  const NodeMatrix v = NodeMatrix::Zero(nen, 3);
-  const double h = 1e-6 * std::cbrt(g.volume);
-  NodeMatrix fp(nen, 3), fm(nen, 3);
-  for (int j = 0; j < n; ++j) {
-    NodeMatrix xp = X;
-    NodeMatrix xm = X;
-    xp(j / 3, j % 3) += h;
-    xm(j / 3, j % 3) -= h;
-    internalForces(g, model, xp, v, fp);
-    internalForces(g, model, xm, v, fm);
-    for (int i = 0; i < n; ++i) {
-      K(i, j) = (fp(i / 3, i % 3) - fm(i / 3, i % 3)) / (2.0 * h);
-    }
-  }
-  return 0.5 * (K + K.transpose());
-}
-
-} // namespace
 
 QuasiStaticUnit::QuasiStaticUnit(const DeformableBody& body) : body_(body) {
   const DeformableMesh& mesh = body.mesh();
@@ -69,7 +42,7 @@ QuasiStaticUnit::QuasiStaticUnit(const DeformableBody& body) : body_(body) {
     NodeMatrix X(nen, 3);
     for (int a = 0; a < nen; ++a) X.row(a) = mesh.nodes[mesh.element(e)[a]].transpose();
     // Forces are internal (f_int): the stiffness is +d f_int / d x.
-    const Eigen::MatrixXd K = elementStiffness(body.geometry()[e], body.model(), X);
+    const Eigen::MatrixXd K = elementTangentAtRest(body.geometry()[e], body.model(), X);
     for (int i = 0; i < 3 * nen; ++i) {
       const auto gi = 3 * static_cast<int>(mesh.element(e)[i / 3]) + i % 3;
       diagonal += K(i, i);

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "deformable/StableStep.hpp"
 
+#include <Eigen/Sparse>
+
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -73,6 +76,41 @@ double targetLength(const std::vector<std::size_t>& order, const std::vector<dou
 }
 
 } // namespace
+
+double meshFrequencyBound(const DeformableMesh& mesh, const std::vector<ElementGeometry>& geometry,
+                          const ElementModel& model, const std::vector<double>& masses) {
+  // The assembled |K_ij| by node pair: row sums need the assembled entries (a sum of element
+  // entries of both signs is smaller than the sum of their sizes).
+  const int nen = mesh.nodesPerElement();
+  const auto elements = static_cast<std::int64_t>(mesh.elementCount());
+  std::vector<Eigen::MatrixXd> tangents(mesh.elementCount());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ei = 0; ei < elements; ++ei) {
+    const auto e = static_cast<std::size_t>(ei);
+    NodeMatrix X(nen, 3);
+    for (int a = 0; a < nen; ++a) X.row(a) = mesh.nodes[mesh.element(e)[a]].transpose();
+    tangents[e] = elementTangentAtRest(geometry[e], model, X);
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(mesh.elementCount() * static_cast<std::size_t>(9 * nen * nen));
+  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
+    for (int i = 0; i < 3 * nen; ++i) {
+      for (int j = 0; j < 3 * nen; ++j) {
+        triplets.emplace_back(3 * mesh.element(e)[i / 3] + i % 3, 3 * mesh.element(e)[j / 3] + j % 3, tangents[e](i, j));
+      }
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(3 * mesh.nodeCount());
+  Eigen::SparseMatrix<double, Eigen::RowMajor> K(n, n);
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  double omega2 = 0.0;
+  for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
+    double row = 0.0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(K, r); it; ++it) row += std::abs(it.value());
+    omega2 = std::max(omega2, row / masses[static_cast<std::size_t>(r / 3)]);
+  }
+  return std::sqrt(omega2);
+}
 
 MassScaling massScaling(const DeformableMesh& mesh, const std::vector<double>& volumes, double density,
                         double maxAddedFraction) {

@@ -17,6 +17,7 @@
 
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/NeoHookean.hpp"
+#include "deformable/TetElement.hpp"
 
 #include <cstddef>
 #include <vector>
@@ -35,10 +36,24 @@ struct StableStepEstimate {
   double dampingRatio = 0.0;  ///< xi of the highest mode (unit: -)
   double safety = 0.0;        ///< the safety factor used (unit: -)
   double contactFrequency = 0.0; ///< omega_c of fully pressed half-space contact (unit: rad/s); 0 = none
+  /// The mesh's own bound (meshFrequencyBound) was lower than the element bound and set the step:
+  /// lengthMin is then the effective length 2 c_d / omega_mesh.
+  bool meshBound = false;
+  double meshFrequency = 0.0; ///< Gershgorin's bound on the mesh's omega_max (unit: rad/s); 0 = not computed
 };
 
 /// Element length l_e (unit: m) of element e.
 [[nodiscard]] double elementLength(const DeformableMesh& mesh, std::size_t e);
+
+/// Gershgorin's bound on the highest frequency of the assembled mesh (unit: rad/s): omega_max^2 <=
+/// max over rows i of sum_j |K_ij| / m_i, with K the tangent at rest (elementTangentAtRest) and m
+/// the lumped masses (M^-1 K has the eigenvalues omega^2 and Gershgorin's circles hold them). A
+/// rigorous bound like the element one, and much closer on gmsh's meshes: their near-flat surface
+/// elements share nodes with large ones, whose mass the element bound does not see (a 5 m^3
+/// Core-Loc of 2 311 tets: element bound 6.6 times the power-iteration omega_max for tet4, 2.7
+/// for tet10; Gershgorin 1.5 and 1.9; docs/benchmarks.md).
+[[nodiscard]] double meshFrequencyBound(const DeformableMesh& mesh, const std::vector<ElementGeometry>& geometry,
+                                        const ElementModel& model, const std::vector<double>& masses);
 
 /// Selective mass scaling (ours; the usual remedy of explicit codes for a few small elements,
 /// docs/theory.md "Mass scaling"): element e's density is multiplied by s_e >= 1, which lengthens

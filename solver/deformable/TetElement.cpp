@@ -193,4 +193,26 @@ Mat3 elementCauchyStress(const ElementGeometry& g, const ElementModel& model, co
   return sum / volume;
 }
 
+Eigen::MatrixXd elementTangentAtRest(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& X) {
+  const int nen = static_cast<int>(X.rows());
+  const int n = 3 * nen;
+  Eigen::MatrixXd K(n, n);
+  const NodeMatrix v = NodeMatrix::Zero(nen, 3);
+  const double h = 1e-6 * std::cbrt(g.volume);
+  NodeMatrix fp(nen, 3), fm(nen, 3);
+  for (int j = 0; j < n; ++j) {
+    NodeMatrix xp = X;
+    NodeMatrix xm = X;
+    xp(j / 3, j % 3) += h;
+    xm(j / 3, j % 3) -= h;
+    internalForces(g, model, xp, v, fp);
+    internalForces(g, model, xm, v, fm);
+    for (int i = 0; i < n; ++i) {
+      K(i, j) = (fp(i / 3, i % 3) - fm(i / 3, i % 3)) / (2.0 * h);
+    }
+  }
+  return 0.5 * (K + K.transpose());
+}
+
+
 } // namespace armour::deformable

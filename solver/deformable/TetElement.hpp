@@ -80,6 +80,13 @@ bool internalForces(const ElementGeometry& g, const ElementModel& model, const N
 bool internalForces(const ElementGeometry& g, const ElementModel& model, const double* x, const double* v, int nodes,
                     double* force);
 
+/// The element's tangent stiffness at its reference positions X (rows), d f_int / d x (unit: N/m),
+/// 3 nen x 3 nen with dof 3 a + i for node a, axis i: central differences of internalForces (F-bar
+/// included; step 1e-6 V^(1/3)), symmetrised (the exact tangent is symmetric; the differences
+/// leave O(h^2) asymmetry). At rest the Neo-Hookean tangent is linear elasticity's.
+[[nodiscard]] Eigen::MatrixXd elementTangentAtRest(const ElementGeometry& g, const ElementModel& model,
+                                                   const NodeMatrix& X);
+
 /// Stored energy sum_q W_q psi(F_bar_q) (unit: J); NaN for an inverted element.
 [[nodiscard]] double elementStrainEnergy(const ElementGeometry& g, const ElementModel& model, const NodeMatrix& x);
 

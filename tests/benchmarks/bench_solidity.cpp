@@ -25,6 +25,9 @@
 #include "core/BuildInfo.hpp"
 #include "deformable/DeformableBody.hpp"
 #include "deformable/QuasiStatic.hpp"
+#include "deformable/TetElement.hpp"
+
+#include <Eigen/Sparse>
 #include "deformable/StressFields.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "geometry/Tetrahedralizer.hpp"
@@ -191,6 +194,59 @@ void quasiStaticRow(const geo::TriangleMesh& surface, std::size_t elements, def:
              3 * body.nodeCount(), factorCpu, 1e3 * solveCpu, 60.0 / 0.01 * solveCpu, 1e-6 * largest);
 }
 
+/// The highest frequency of the unit's free mesh (lumped masses, tangent at rest) against the
+/// bounds a stable step can rest on: the element bound that StableStep uses (2 c_d / l_min),
+/// Gershgorin's row sums of M^-1 |K| (a bound on the assembled mesh), and power iteration on
+/// M^-1 K (a lower estimate of the true omega_max, 400 iterations).
+void stepBoundsRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, double massScaling) {
+  geo::TetrahedralizeOptions options;
+  options.targetTetCount = elements;
+  options.keepSurface = false;
+  const geo::TetMesh tets = geo::tetrahedralize(surface, options);
+  def::DeformableSettings settings;
+  settings.massScaling = massScaling;
+  const def::DeformableBody body(def::makeDeformableMesh(tets, order, "Core-Loc"), settings, "Core-Loc");
+  const auto& mesh = body.mesh();
+  const std::size_t n = 3 * mesh.nodeCount();
+  const int nen = mesh.nodesPerElement();
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
+    def::NodeMatrix X(nen, 3);
+    for (int a = 0; a < nen; ++a) X.row(a) = mesh.nodes[mesh.element(e)[a]].transpose();
+    const Eigen::MatrixXd K = def::elementTangentAtRest(body.geometry()[e], body.model(), X);
+    for (int i = 0; i < 3 * nen; ++i)
+      for (int j = 0; j < 3 * nen; ++j)
+        triplets.emplace_back(3 * mesh.element(e)[i / 3] + i % 3, 3 * mesh.element(e)[j / 3] + j % 3, K(i, j));
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> K(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  K.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::VectorXd invMass(static_cast<Eigen::Index>(n));
+  for (std::size_t a = 0; a < mesh.nodeCount(); ++a) invMass.segment<3>(static_cast<Eigen::Index>(3 * a)).setConstant(1.0 / body.masses()[a]);
+  double gershgorin = 0.0;
+  for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
+    double row = 0.0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(K, r); it; ++it) row += std::abs(it.value());
+    gershgorin = std::max(gershgorin, row * invMass[r]);
+  }
+  // Power iteration on M^-1/2 K M^-1/2 (symmetric; its eigenvalues are omega^2).
+  const Eigen::VectorXd s = invMass.cwiseSqrt();
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n));
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = std::sin(1.0 + 7.0 * static_cast<double>(i)); // not a rigid mode
+  double lambda = 0.0;
+  for (int it = 0; it < 400; ++it) {
+    x.normalize();
+    const Eigen::VectorXd y = s.cwiseProduct(K * s.cwiseProduct(x));
+    lambda = x.dot(y);
+    x = y;
+  }
+  const double c = def::dilatationalWaveSpeed(settings.material);
+  const double omegaElement = 2.0 * c / body.massScaling().length;
+  fmt::print("| {}{} | {} | {:.4g} | {:.4g} | {:.4g} | {:.3g} | {:.3g} |\n", order == def::ElementOrder::Linear ? "tet4" : "tet10 (F-bar)",
+             massScaling > 0.0 ? fmt::format(", mass scaling {}", massScaling) : std::string(), mesh.elementCount(),
+             omegaElement, std::sqrt(gershgorin), std::sqrt(lambda), omegaElement / std::sqrt(lambda),
+             std::sqrt(gershgorin) / std::sqrt(lambda));
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -203,6 +259,8 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", seconds, "simulated time of every row (s)")->check(CLI::Range(1e-4, 10.0));
   app.add_option("--speed", speed, "downward speed at first touch (m/s; seed 002's drop: 0.5)")->check(CLI::Range(0.0, 10.0));
   int quasiStaticCases = 0;
+  bool stepBounds = false;
+  app.add_flag("--step-bounds", stepBounds, "also compare the stable-step bounds with the mesh's highest frequency");
   app.add_option("--quasi-static", quasiStaticCases, "also time this many load cases of the quasi-static stress stage")
       ->check(CLI::Range(0, 100000));
   app.add_option("--mass-scaling", massScaling, "also the deformable rows with this mass scaling (added mass / mass; 0 = none)")
@@ -238,6 +296,14 @@ int main(int argc, char** argv) {
   for (const Row& r : rows) {
     fmt::print("| {} | {} | {:.3g} | {} | {:.3f} | {:.3g} | {:.3g} | {:.2f} | {} |\n", r.model, r.elements, r.dt, r.steps,
                r.cpu, r.cpu / r.seconds, r.cpu / r.seconds / reference, 1e3 * r.lowest, r.note);
+  }
+  if (stepBounds) {
+    fmt::print("\n| mesh | elements | element bound 2 c_d / l_min (rad/s) | Gershgorin bound (rad/s) | power iteration, "
+               "omega_max >= (rad/s) | element bound / omega_max | Gershgorin / omega_max |\n|---|---:|---:|---:|---:|---:|---:|\n");
+    for (const double ms : {0.0, 0.01}) {
+      stepBoundsRow(surface, elements, def::ElementOrder::Linear, ms);
+      stepBoundsRow(surface, elements, def::ElementOrder::Quadratic, ms);
+    }
   }
   if (quasiStaticCases > 0) {
     fmt::print("\n| stage | elements | unknowns | assemble and factor, CPU (s) | per load case, CPU (ms) | per storm minute at "

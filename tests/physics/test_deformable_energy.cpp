@@ -41,8 +41,8 @@ DeformableBody vibratingBar(ElementOrder order, bool fBar, double viscosityFract
 
 TEST(DeformableEnergy, FreeVibrationConservesEnergyWithoutViscosity) {
   // At three mesh sizes (issue 26): 2 x 2 x 8, 3 x 3 x 12 and 4 x 4 x 16 cells. The drift is
-  // O(dt^2) with dt proportional to the cells, so it falls with every refinement (measured 0.081,
-  // 0.036, 0.023 % for 4 nodes; 0.020, 0.0095, 0.0055 % for 10).
+  // O(dt^2) with dt proportional to the cells, so it falls with every refinement (measured 0.146,
+  // 0.063, 0.040 % for 4 nodes; 0.023, 0.011, 0.0062 % for 10).
   std::array<double, 2> previous{1.0, 1.0}; // drift of the coarser mesh, per order
   for (const auto [order, n] : {std::pair{ElementOrder::Linear, 2}, std::pair{ElementOrder::Quadratic, 2},
                                 std::pair{ElementOrder::Linear, 3}, std::pair{ElementOrder::Quadratic, 3},
