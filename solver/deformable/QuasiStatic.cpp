@@ -3,6 +3,7 @@
 
 #include "core/Error.hpp"
 #include "deformable/HalfSpaceContact.hpp"
+#include "deformable/StableStep.hpp"
 #include "deformable/SurfaceLoads.hpp"
 
 #include <Eigen/Dense>
@@ -16,7 +17,6 @@ namespace armour::deformable {
 QuasiStaticUnit::QuasiStaticUnit(const DeformableBody& body) : body_(body) {
   const DeformableMesh& mesh = body.mesh();
   const std::size_t nodes = mesh.nodeCount();
-  const int nen = mesh.nodesPerElement();
   std::size_t parts = 0;
   (void)nodeParts(mesh, parts);
   if (parts != 1) {
@@ -35,23 +35,9 @@ QuasiStaticUnit::QuasiStaticUnit(const DeformableBody& body) : body_(body) {
     inertia_ += masses[a] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
   }
 
+  stiffness_ = tangentAtRest(mesh, body.geometry(), body.model());
+  double diagonal = stiffness_.diagonal().sum();
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(mesh.elementCount() * static_cast<std::size_t>(9 * nen * nen));
-  double diagonal = 0.0;
-  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
-    NodeMatrix X(nen, 3);
-    for (int a = 0; a < nen; ++a) X.row(a) = mesh.nodes[mesh.element(e)[a]].transpose();
-    // Forces are internal (f_int): the stiffness is +d f_int / d x.
-    const Eigen::MatrixXd K = elementTangentAtRest(body.geometry()[e], body.model(), X);
-    for (int i = 0; i < 3 * nen; ++i) {
-      const auto gi = 3 * static_cast<int>(mesh.element(e)[i / 3]) + i % 3;
-      diagonal += K(i, i);
-      for (int j = 0; j < 3 * nen; ++j) {
-        const auto gj = 3 * static_cast<int>(mesh.element(e)[j / 3]) + j % 3;
-        triplets.emplace_back(gi, gj, K(i, j));
-      }
-    }
-  }
   diagonal /= static_cast<double>(3 * nodes);
   // The six rigid modes held by soft springs at three far-apart nodes: A in all directions, B
   // across AB, C across the plane ABC. The loads are balanced, so the springs carry no force.
@@ -83,8 +69,9 @@ QuasiStaticUnit::QuasiStaticUnit(const DeformableBody& body) : body_(body) {
   spring(A, Mat3::Identity());
   spring(B, Mat3::Identity() - ab * ab.transpose());
   spring(C, normal * normal.transpose());
-  stiffness_.resize(static_cast<Eigen::Index>(3 * nodes), static_cast<Eigen::Index>(3 * nodes));
-  stiffness_.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SparseMatrix<double> springs(stiffness_.rows(), stiffness_.cols());
+  springs.setFromTriplets(triplets.begin(), triplets.end());
+  stiffness_ += springs;
   factor_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(stiffness_);
   if (factor_->info() != Eigen::Success) {
     core::failInput(body.source(), "the stiffness of its mesh cannot be factored ({} nodes): the mesh must be one "

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "deformable/StableStep.hpp"
 
-#include <Eigen/Sparse>
-
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
@@ -77,10 +75,8 @@ double targetLength(const std::vector<std::size_t>& order, const std::vector<dou
 
 } // namespace
 
-double meshFrequencyBound(const DeformableMesh& mesh, const std::vector<ElementGeometry>& geometry,
-                          const ElementModel& model, const std::vector<double>& masses) {
-  // The assembled |K_ij| by node pair: row sums need the assembled entries (a sum of element
-  // entries of both signs is smaller than the sum of their sizes).
+Eigen::SparseMatrix<double> tangentAtRest(const DeformableMesh& mesh, const std::vector<ElementGeometry>& geometry,
+                                          const ElementModel& model) {
   const int nen = mesh.nodesPerElement();
   const auto elements = static_cast<std::int64_t>(mesh.elementCount());
   std::vector<Eigen::MatrixXd> tangents(mesh.elementCount());
@@ -101,13 +97,21 @@ double meshFrequencyBound(const DeformableMesh& mesh, const std::vector<ElementG
     }
   }
   const auto n = static_cast<Eigen::Index>(3 * mesh.nodeCount());
-  Eigen::SparseMatrix<double, Eigen::RowMajor> K(n, n);
+  Eigen::SparseMatrix<double> K(n, n);
   K.setFromTriplets(triplets.begin(), triplets.end());
+  return K;
+}
+
+double meshFrequencyBound(const DeformableMesh& mesh, const std::vector<ElementGeometry>& geometry,
+                          const ElementModel& model, const std::vector<double>& masses) {
+  // Row sums of the assembled |K_ij| (a sum of element entries of both signs is smaller than the
+  // sum of their sizes); K is symmetric, so its columns are its rows.
+  const Eigen::SparseMatrix<double> K = tangentAtRest(mesh, geometry, model);
   double omega2 = 0.0;
-  for (Eigen::Index r = 0; r < K.outerSize(); ++r) {
-    double row = 0.0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(K, r); it; ++it) row += std::abs(it.value());
-    omega2 = std::max(omega2, row / masses[static_cast<std::size_t>(r / 3)]);
+  for (Eigen::Index c = 0; c < K.outerSize(); ++c) {
+    double sum = 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it) sum += std::abs(it.value());
+    omega2 = std::max(omega2, sum / masses[static_cast<std::size_t>(c / 3)]);
   }
   return std::sqrt(omega2);
 }

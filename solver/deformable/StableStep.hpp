@@ -19,6 +19,8 @@
 #include "deformable/NeoHookean.hpp"
 #include "deformable/TetElement.hpp"
 
+#include <Eigen/Sparse>
+
 #include <cstddef>
 #include <vector>
 
@@ -44,6 +46,12 @@ struct StableStepEstimate {
 
 /// Element length l_e (unit: m) of element e.
 [[nodiscard]] double elementLength(const DeformableMesh& mesh, std::size_t e);
+
+/// The mesh's tangent stiffness at rest (unit: N/m), 3 n x 3 n with dof 3 a + i for node a, axis i:
+/// the element tangents (elementTangentAtRest) assembled.
+[[nodiscard]] Eigen::SparseMatrix<double> tangentAtRest(const DeformableMesh& mesh,
+                                                        const std::vector<ElementGeometry>& geometry,
+                                                        const ElementModel& model);
 
 /// Gershgorin's bound on the highest frequency of the assembled mesh (unit: rad/s): omega_max^2 <=
 /// max over rows i of sum_j |K_ij| / m_i, with K the tangent at rest (elementTangentAtRest) and m

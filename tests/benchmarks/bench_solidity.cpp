@@ -64,13 +64,18 @@ struct Row {
 /// The unit lying flat: the natural frame's y (normal to the plane of the H) turned to z.
 Quat lyingFlat() { return Quat(Eigen::AngleAxisd(0.5 * 3.14159265358979323846, Vec3::UnitX())); }
 
-Row deformableRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, double seconds,
-                  double speed, double massScaling) {
+/// gmsh's mesh of the unit with about `elements` tets (the deformable rows' mesh).
+geo::TetMesh meshUnit(const geo::TriangleMesh& surface, std::size_t elements) {
   geo::TetrahedralizeOptions options;
   options.targetTetCount = elements;
   options.keepSurface = false;
   options.source = "bench_solidity Core-Loc";
-  geo::TetMesh tets = geo::tetrahedralize(surface, options);
+  return geo::tetrahedralize(surface, options);
+}
+
+Row deformableRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, double seconds,
+                  double speed, double massScaling) {
+  geo::TetMesh tets = meshUnit(surface, elements);
   const Quat q = lyingFlat();
   double lowest = 1e30;
   for (auto& p : tets.vertices) {
@@ -164,10 +169,7 @@ Row rigidRow(const geo::TriangleMesh& surface, sim::ContactModel model, sim::Con
 /// and factored once, then load cases (two opposite point forces at the ends of the unit's long
 /// axis and one across it, spread over 0.1 m), each a back substitution and the element stresses.
 void quasiStaticRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, int cases) {
-  geo::TetrahedralizeOptions options;
-  options.targetTetCount = elements;
-  options.keepSurface = false;
-  const geo::TetMesh tets = geo::tetrahedralize(surface, options);
+  geo::TetMesh tets = meshUnit(surface, elements);
   def::DeformableSettings settings;
   const def::DeformableBody body(def::makeDeformableMesh(tets, order, "Core-Loc"), settings, "Core-Loc");
   const double cpu0 = threadCpuNow();
@@ -199,27 +201,13 @@ void quasiStaticRow(const geo::TriangleMesh& surface, std::size_t elements, def:
 /// Gershgorin's row sums of M^-1 |K| (a bound on the assembled mesh), and power iteration on
 /// M^-1 K (a lower estimate of the true omega_max, 400 iterations).
 void stepBoundsRow(const geo::TriangleMesh& surface, std::size_t elements, def::ElementOrder order, double massScaling) {
-  geo::TetrahedralizeOptions options;
-  options.targetTetCount = elements;
-  options.keepSurface = false;
-  const geo::TetMesh tets = geo::tetrahedralize(surface, options);
+  geo::TetMesh tets = meshUnit(surface, elements);
   def::DeformableSettings settings;
   settings.massScaling = massScaling;
   const def::DeformableBody body(def::makeDeformableMesh(tets, order, "Core-Loc"), settings, "Core-Loc");
   const auto& mesh = body.mesh();
   const std::size_t n = 3 * mesh.nodeCount();
-  const int nen = mesh.nodesPerElement();
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (std::size_t e = 0; e < mesh.elementCount(); ++e) {
-    def::NodeMatrix X(nen, 3);
-    for (int a = 0; a < nen; ++a) X.row(a) = mesh.nodes[mesh.element(e)[a]].transpose();
-    const Eigen::MatrixXd K = def::elementTangentAtRest(body.geometry()[e], body.model(), X);
-    for (int i = 0; i < 3 * nen; ++i)
-      for (int j = 0; j < 3 * nen; ++j)
-        triplets.emplace_back(3 * mesh.element(e)[i / 3] + i % 3, 3 * mesh.element(e)[j / 3] + j % 3, K(i, j));
-  }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> K(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  K.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> K = def::tangentAtRest(mesh, body.geometry(), body.model());
   Eigen::VectorXd invMass(static_cast<Eigen::Index>(n));
   for (std::size_t a = 0; a < mesh.nodeCount(); ++a) invMass.segment<3>(static_cast<Eigen::Index>(3 * a)).setConstant(1.0 / body.masses()[a]);
   double gershgorin = 0.0;
