@@ -251,6 +251,7 @@ BodySeriesFile::BodySeriesFile(BodySeriesSettings settings, const std::vector<Se
     std::filesystem::remove(tmp, ignored);
     throw;
   }
+  std::vector<double>().swap(oldTimes_); // only the resume's messages needed them
   const std::size_t n = bodies.size();
   const std::size_t block = settings_.syncEvery;
   pendingTime_.resize(block);

@@ -138,7 +138,7 @@ private:
   std::size_t records_ = 0;    ///< in the file plus pending
   std::size_t pending_ = 0;    ///< staged records not yet in the file (< syncEvery)
   double lastTime_ = 0.0;
-  std::vector<double> oldTimes_; ///< resume: the old file's record times
+  std::vector<double> oldTimes_; ///< resume: the old file's record times (freed once it is rebuilt)
   // Staged records (syncEvery records): time; position, velocity, angular velocity and hydro
   // force (four blocks of syncEvery x bodies x 3); orientation; contact count; largest force.
   std::vector<double> pendingTime_, pendingVec_, pendingQuat_;

@@ -44,7 +44,7 @@ TEST(DeformableEnergy, FreeVibrationConservesEnergyWithoutViscosity) {
   // O(dt^2) with dt proportional to the cells, so it falls with every refinement (measured 0.146,
   // 0.063, 0.040 % for 4 nodes; 0.023, 0.011, 0.0062 % for 10).
   std::array<double, 2> previous{1.0, 1.0}; // drift of the coarser mesh, per order
-  for (const auto [order, n] : {std::pair{ElementOrder::Linear, 2}, std::pair{ElementOrder::Quadratic, 2},
+  for (const auto& [order, n] : {std::pair{ElementOrder::Linear, 2}, std::pair{ElementOrder::Quadratic, 2},
                                 std::pair{ElementOrder::Linear, 3}, std::pair{ElementOrder::Quadratic, 3},
                                 std::pair{ElementOrder::Linear, 4}, std::pair{ElementOrder::Quadratic, 4}}) {
     auto body = vibratingBar(order, true, 0.0, n);

@@ -8,6 +8,7 @@
 #include "deformable/StructuredBox.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Sparse>
 
 #include <cmath>
 #include <functional>
@@ -44,24 +45,8 @@ inline MaterialSettings concrete(double poissonRatio = 0.205, double viscosity =
 inline double elementMaxFrequency(ElementOrder order, const NodeMatrix& X, const ElementModel& model, double density) {
   ElementGeometry g;
   elementGeometry(order, X, g);
-  const int nen = static_cast<int>(X.rows());
-  const int n = 3 * nen;
-  Eigen::MatrixXd K(n, n);
-  const NodeMatrix v = NodeMatrix::Zero(nen, 3);
-  const double h = 1e-7 * std::cbrt(g.volume);
-  for (int j = 0; j < n; ++j) {
-    NodeMatrix xp = X;
-    NodeMatrix xm = X;
-    xp(j / 3, j % 3) += h;
-    xm(j / 3, j % 3) -= h;
-    NodeMatrix fp;
-    NodeMatrix fm;
-    internalForces(g, model, xp, v, fp);
-    internalForces(g, model, xm, v, fm);
-    for (int i = 0; i < n; ++i) {
-      K(i, j) = (fp(i / 3, i % 3) - fm(i / 3, i % 3)) / (2.0 * h);
-    }
-  }
+  const int n = 3 * static_cast<int>(X.rows());
+  const Eigen::MatrixXd K = elementTangentAtRest(g, model, X);
   Eigen::VectorXd invSqrtMass(n);
   for (int i = 0; i < n; ++i) {
     const int a = i / 3;
@@ -72,6 +57,26 @@ inline double elementMaxFrequency(ElementOrder order, const NodeMatrix& X, const
   A = 0.5 * (A + A.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(A, Eigen::EigenvaluesOnly);
   return std::sqrt(solver.eigenvalues().maxCoeff());
+}
+
+/// A lower estimate of the mesh's highest frequency (unit: rad/s): power iteration on
+/// M^-1/2 K M^-1/2 (its eigenvalues are omega^2), from a start that is no rigid mode.
+inline double highestFrequencyByPowerIteration(const Eigen::SparseMatrix<double>& K, const std::vector<double>& masses,
+                                               int iterations) {
+  const Eigen::Index n = K.rows();
+  Eigen::VectorXd s(n), x(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s[i] = 1.0 / std::sqrt(masses[static_cast<std::size_t>(i / 3)]);
+    x[i] = std::sin(1.0 + 7.0 * static_cast<double>(i));
+  }
+  double lambda = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    x.normalize();
+    const Eigen::VectorXd y = s.cwiseProduct(K * s.cwiseProduct(x));
+    lambda = x.dot(y);
+    x = y;
+  }
+  return std::sqrt(lambda);
 }
 
 } // namespace armour::deformable::test
