@@ -59,14 +59,15 @@ public:
     }
   }
   /// Capture the world (read only: the run is not perturbed) and write it atomically.
-  void write(const fs::path& path, const simulation::World& world, const simulation::OutputSchedule& outputs,
+  void write(const fs::path& path, const simulation::World& world, const simulation::RunOutputs& outputs,
              const std::string& stopReason = {}) const {
     simulation::Checkpoint c;
     c.state = world.captureState();
     c.sceneFingerprint = fingerprint_;
     c.sceneIdentity = identity_;
     c.bodyNames = names_;
-    c.outputs = outputs;
+    c.outputs = outputs.schedule();
+    c.applicationState = outputs.state();
     c.stopReason = stopReason;
     simulation::writeCheckpoint(path, c);
   }
@@ -388,7 +389,8 @@ void runScene(const RunRequest& o) {
   }
   const std::optional<simulation::OutputSchedule> resume =
       restart ? std::optional<simulation::OutputSchedule>(restart->outputs) : std::nullopt;
-  simulation::RunOutputs outputs(scene, built, {commandLineOf(o), o.scene, sceneSets(o)}, resume);
+  simulation::RunOutputs outputs(scene, built, {commandLineOf(o), o.scene, sceneSets(o)}, resume,
+                                 restart ? restart->applicationState : std::string());
   log->info("outputs in {}: bodies.pvd (VTK every {} s), bodies.nc (series every {} s), final_state.csv",
             scene.output.folder.string(), scene.output.vtkInterval, scene.output.seriesInterval);
   const RunCheckpoints checkpoints(fingerprint, identity, world);
@@ -456,7 +458,7 @@ void runScene(const RunRequest& o) {
                         world.time() >= (static_cast<double>(nextCheckpoint) - 1e-9) * checkpointEvery) ||
                        (checkpointWallSeconds > 0.0 && wallSince(lastCheckpoint) >= checkpointWallSeconds);
       if (due && outputs.flushed()) {
-        checkpoints.write(checkpointPath, world, outputs.schedule());
+        checkpoints.write(checkpointPath, world, outputs);
         log->debug("checkpoint at t = {} s (step {})", world.time(), world.stepCount());
         nextCheckpoint = nextCheckpointIndex(world.time());
         lastCheckpoint = Clock::now();
@@ -480,7 +482,7 @@ void runScene(const RunRequest& o) {
     writeStateCsv(state, scene, built);
     std::string saved = state.string();
     try {
-      checkpoints.write(errorCheckpoint, world, outputs.schedule(), e.what());
+      checkpoints.write(errorCheckpoint, world, outputs, e.what());
       saved += ", " + errorCheckpoint.string();
     } catch (const core::InputError& writeError) {
       log->error("{}", writeError.what()); // the stop itself is the news: report it regardless
@@ -494,7 +496,7 @@ void runScene(const RunRequest& o) {
   if (stopped) {
     // The outputs are closed without a final frame: the restarted run writes the next scheduled one.
     outputs.close();
-    checkpoints.write(checkpointPath, world, outputs.schedule());
+    checkpoints.write(checkpointPath, world, outputs);
     std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
                                     o.output.empty() ? std::string() : " -o " + o.output);
     if (!o.stormFile.empty()) again += " --storm " + o.stormFile;
@@ -509,7 +511,7 @@ void runScene(const RunRequest& o) {
     throw CLI::RuntimeError(kExitStopped);
   }
   outputs.finish(world);
-  checkpoints.write(checkpointPath, world, outputs.schedule());
+  checkpoints.write(checkpointPath, world, outputs);
   const double wall = wallSince(start);
   const fs::path finalState = scene.output.folder / "final_state.csv";
   writeStateCsv(finalState, scene, built);

@@ -4,6 +4,7 @@
 #include "app/AnalyseCommands.hpp"
 #include "app/CommandContext.hpp"
 #include "app/DeformCommands.hpp"
+#include "app/StressCommands.hpp"
 #include "app/EnsembleCommands.hpp"
 #include "app/PlaceCommands.hpp"
 #include "app/ReportCommands.hpp"
@@ -61,6 +62,7 @@ int main(int argc, char** argv) {
   armour::app::addEnsembleCommands(app, global);
   armour::app::addReportCommands(app, global);
   armour::app::addDeformCommands(app, global);
+  armour::app::addStressCommands(app, global);
 
   refuseOutOfRangeNumbers(app);
 

@@ -6,6 +6,8 @@
 #include "geometry/VtkSupport.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -13,6 +15,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <exception>
+#include <stdexcept>
 #include <fstream>
 #include <string>
 
@@ -113,7 +116,9 @@ TriangleMesh readVtp(const std::filesystem::path& path) {
   return mesh;
 }
 
-void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path) {
+void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path) { writeVtp(mesh, path, {}); }
+
+void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path, const std::vector<CellArray>& cells) {
   vtkNew<vtkCellArray> polys;
   for (const auto& f : mesh.triangles) {
     const vtkIdType ids[3] = {f[0], f[1], f[2]};
@@ -122,6 +127,15 @@ void writeVtp(const TriangleMesh& mesh, const std::filesystem::path& path) {
   vtkNew<vtkPolyData> data;
   data->SetPoints(toVtkPoints(mesh.vertices));
   data->SetPolys(polys);
+  for (const CellArray& c : cells) {
+    if (c.values.size() != mesh.triangles.size())
+      throw std::invalid_argument("writeVtp: cell array '" + c.name + "' has not one value per triangle");
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(c.name.c_str());
+    array->SetNumberOfValues(static_cast<vtkIdType>(c.values.size()));
+    for (std::size_t i = 0; i < c.values.size(); ++i) array->SetValue(static_cast<vtkIdType>(i), c.values[i]);
+    data->GetCellData()->AddArray(array);
+  }
   vtkNew<vtkXMLPolyDataWriter> writer;
   writeVtkXmlAtomically(*writer, data, path);
 }

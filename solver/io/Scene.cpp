@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/Scene.hpp"
 
+#include "core/Error.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -170,6 +172,9 @@ std::string describeScene(const Scene& s) {
   line(fmt::format("  checkpoint_wall_minutes = {} min{}", s.output.checkpointWallMinutes,
                    s.output.checkpointWallMinutes > 0 ? "" : " (off)"));
   line(fmt::format("  contacts = {}", s.output.contacts));
+  if (!s.output.unitLoads.empty())
+    line(fmt::format("  unit_loads = [{}] every {} s, clusters of {} Dn", fmt::join(s.output.unitLoads, ", "),
+                     s.output.unitLoadsInterval, s.output.unitLoadsCluster));
 
   line("sleep:");
   line(fmt::format("  enabled = {}", s.sleep.enabled));
@@ -297,6 +302,34 @@ std::string describeScene(const Scene& s) {
     line(fmt::format("warnings ({}):", s.warnings.size()));
     for (const std::string& w : s.warnings) line("  " + w);
   }
+  return out;
+}
+
+std::vector<std::size_t> unitLoadBodies(const Scene& scene) {
+  std::vector<std::uint8_t> chosen(scene.bodies.size(), 0);
+  for (const std::string& entry : scene.output.unitLoads) {
+    const bool prefix = !entry.empty() && entry.back() == '*';
+    const std::string_view stem = prefix ? std::string_view(entry).substr(0, entry.size() - 1) : std::string_view(entry);
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const Body& b = scene.bodies[i];
+      if (prefix ? !b.name.starts_with(stem) : b.name != stem) continue;
+      if (b.fixed) {
+        if (prefix) continue; // a prefix may cover fixed bodies too: they carry no loads of their own
+        core::failInput(scene.sourceName, "output.unit_loads: body '{}' is fixed: it never moves, and its loads are "
+                                          "not traced; name dynamic bodies", entry);
+      }
+      chosen[i] = 1;
+      ++found;
+    }
+    if (found == 0)
+      core::failInput(scene.sourceName, "output.unit_loads: '{}' names no {}body of the scene; give body names, or a "
+                                        "prefix ending in '*' such as 'unit_*'",
+                      entry, prefix ? "dynamic " : "");
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < chosen.size(); ++i)
+    if (chosen[i] != 0) out.push_back(i);
   return out;
 }
 

@@ -256,7 +256,13 @@ struct OutputSettings {
   double checkpointInterval = 1.0;
   double checkpointWallMinutes = 30.0; ///< also between checkpoints (unit: min of wall-clock time); 0 = none
   bool contacts = false;           ///< also write contact points and forces with each snapshot
+  /// Bodies whose contact loads are recorded for `armour stress` (<folder>/unit_loads/,
+  /// simulation/UnitLoads.hpp): body names, or name prefixes ending in '*' ("unit_*"); empty = none.
+  std::vector<std::string> unitLoads;
+  double unitLoadsInterval = 0.02; ///< between unit-load records, each the peak of its window (unit: s)
+  double unitLoadsCluster = 0.1;   ///< largest width of one recorded load's cluster of contact points (unit: Dn)
 };
+
 
 /// Bodies that stay slow long enough stop being integrated until touched (seed 001: PhysX
 /// "sleep" keeps resting packs from chattering).
@@ -320,5 +326,9 @@ std::string describeScene(const Scene& scene);
 /// What the contacts' state depends on (model, sample spacing, level-set and fdem resolution), one
 /// line: a state saved under other settings does not fit the contacts of these.
 std::string describeContactModel(const ContactSettings& contact);
+
+/// The scene bodies `output.unit_loads` names, in scene order. Throws core::InputError naming the
+/// scene file, the key and the entry when an entry names no body or a fixed one.
+std::vector<std::size_t> unitLoadBodies(const Scene& scene);
 
 } // namespace armour::io

@@ -563,7 +563,7 @@ const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
 const KeyList kContactModels{"levelset", "fdem"};
 const KeyList kFdemKeys{"elements_per_unit"};
 const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
-                          "contacts"};
+                          "contacts", "unit_loads", "unit_loads_interval", "unit_loads_cluster"};
 const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wake_load_fraction"};
 const KeyList kBodyDampingKeys{"linear", "angular"};
 
@@ -657,6 +657,25 @@ void readRunSettings(const Block& top, Scene& scene) {
   scene.output.checkpointWallMinutes = o.number("checkpoint_wall_minutes", {"min", kNonNegative, "30; 0 = none"},
                                                 scene.output.checkpointWallMinutes);
   scene.output.contacts = o.flag("contacts", scene.output.contacts);
+  if (o.has("unit_loads")) {
+    const YAML::Node list = o.get("unit_loads");
+    if (list.IsScalar()) {
+      scene.output.unitLoads.push_back(list.Scalar());
+    } else if (list.IsSequence()) {
+      for (const auto& item : list) {
+        if (!item.IsScalar() || item.Scalar().empty())
+          o.failValue("unit_loads", "expected body names or prefixes ending in '*', e.g. [unit_3, unit_7] or 'unit_*'");
+        scene.output.unitLoads.push_back(item.Scalar());
+      }
+    } else {
+      o.failValue("unit_loads", "expected body names or prefixes ending in '*', e.g. [unit_3, unit_7] or 'unit_*'");
+    }
+  }
+  scene.output.unitLoadsInterval = o.number("unit_loads_interval", {"s", kPositive, "0.02"}, scene.output.unitLoadsInterval);
+  scene.output.unitLoadsCluster =
+      o.number("unit_loads_cluster", {"Dn", kPositive, "0.1"}, scene.output.unitLoadsCluster);
+  if (scene.output.unitLoadsCluster > 1.0)
+    o.failValue("unit_loads_cluster", "wider than the unit (1 Dn): give at most 1, e.g. 0.1");
 
   const Block s(ctx, top.has("sleep") ? top.get("sleep") : YAML::Node(), "sleep", kSleepKeys);
   scene.sleep.enabled = s.flag("enabled", scene.sleep.enabled);
@@ -837,6 +856,18 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   readStatic(ctx, top.get("static"), scene);
   readHydro(top, scene);
   detail::readPlacement(top, scene);
+  // Unit names are checked here when the bodies are given; a placement scene's come with `armour place`.
+  if (!top.has("placement") && !scene.output.unitLoads.empty()) {
+    try {
+      (void)unitLoadBodies(scene);
+    } catch (const core::InputError& e) {
+      const Block o(ctx, top.get("output"), "output", kOutputKeys);
+      const std::string message = e.what();
+      const std::string key = "output.unit_loads: ";
+      const auto at = message.find(key);
+      o.failValue("unit_loads", at == std::string::npos ? message : message.substr(at + key.size()));
+    }
+  }
 
   const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });
   if (scene.statics.size() == 0 && !anyFixed && scene.gravity.norm() > 0.0)

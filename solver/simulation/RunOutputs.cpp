@@ -48,7 +48,7 @@ std::string describeOutputTiming(const io::OutputSettings& output, double timeSt
 }
 
 RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const RunProvenance& provenance,
-                       const std::optional<OutputSchedule>& resume)
+                       const std::optional<OutputSchedule>& resume, const std::string& resumeState)
     : scene_(scene), built_(built) {
   if (resume) {
     // Kept for the next checkpoint even when an output is now off, so that turning it on again
@@ -113,6 +113,18 @@ RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const Ru
       nextSeries_ = nextIndexAfter(lastSeriesTime_, scene.output.seriesInterval);
     }
   }
+  if (!scene.output.unitLoads.empty()) {
+    UnitLoadsSettings u;
+    for (std::size_t i : io::unitLoadBodies(scene)) {
+      u.bodies.push_back(built.bodyIndexOfSceneBody[i]);
+      u.sceneBodies.push_back(static_cast<std::int32_t>(i));
+    }
+    World& world = *built.world;
+    for (BodyId b = 0; b < world.bodies().size(); ++b) u.names.push_back(world.bodies().info(b).name);
+    u.interval = scene.output.unitLoadsInterval;
+    u.cluster = scene.output.unitLoadsCluster;
+    unitLoads_ = std::make_unique<UnitLoadsRecorder>(world, std::move(u), scene.output.folder, resumeState);
+  }
 }
 
 RunOutputs::~RunOutputs() = default;
@@ -164,6 +176,7 @@ std::vector<io::ContactPoint> RunOutputs::contactPoints(const World& world) cons
 }
 
 void RunOutputs::update(const World& world) {
+  if (unitLoads_) unitLoads_->update(world);
   const double t = world.time();
   // Due when t has reached the next multiple of the interval (to a hair, for round-off in t).
   const auto due = [t](long index, double interval) { return t >= index * interval - 1e-9 * interval; };
@@ -183,6 +196,7 @@ void RunOutputs::update(const World& world) {
 
 void RunOutputs::finish(const World& world) {
   const double t = world.time();
+  if (unitLoads_) unitLoads_->finish();
   if (vtk_ && t > lastVtkTime_) {
     vtk_->write(frame(world), contactPoints(world));
     lastVtkTime_ = t;

@@ -21,6 +21,7 @@
 #include "io/VtkFrameWriter.hpp"
 #include "simulation/CheckpointFile.hpp"
 #include "simulation/SceneBuilder.hpp"
+#include "simulation/UnitLoads.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -59,8 +60,11 @@ public:
   /// replay, the scene's effective storm settings (file, time offset, offset, ramp, loaded
   /// bodies). With `resume` (a restart), continue the files of the run as they stood at that
   /// schedule.
+  ///
+  /// With `output.unit_loads`, the units' contact loads go to <folder>/unit_loads/ (UnitLoads.hpp);
+  /// `resumeState` is the checkpoint's applicationState, where state() put the recorder's.
   RunOutputs(const io::Scene& scene, const BuiltScene& built, const RunProvenance& provenance,
-             const std::optional<OutputSchedule>& resume = std::nullopt);
+             const std::optional<OutputSchedule>& resume = std::nullopt, const std::string& resumeState = {});
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
@@ -77,6 +81,11 @@ public:
   [[nodiscard]] OutputSchedule schedule() const { return {lastScheduledVtk_, lastScheduledSeries_}; }
   /// Everything written so far is on disk (bodies.nc flushed; VTK files are complete when renamed).
   [[nodiscard]] bool flushed() const { return !series_ || seriesSinceFlush_ == 0; }
+  /// What a checkpoint must hold beyond the World and the schedule to resume the outputs (the
+  /// unit-load recorder's state), as its applicationState; "" = nothing.
+  [[nodiscard]] std::string state() const { return unitLoads_ ? unitLoads_->state() : std::string(); }
+  /// Unit-load records written (0 without output.unit_loads).
+  [[nodiscard]] std::size_t unitLoadRecords() const { return unitLoads_ ? unitLoads_->records() : 0; }
 
   [[nodiscard]] std::size_t vtkFrames() const;
   [[nodiscard]] std::size_t seriesRecords() const;
@@ -90,6 +99,7 @@ private:
   const BuiltScene& built_;
   std::unique_ptr<io::VtkFrameWriter> vtk_;
   std::unique_ptr<io::BodySeriesFile> series_;
+  std::unique_ptr<UnitLoadsRecorder> unitLoads_;
   long nextVtk_ = 0;    ///< index of the next VTK output time (time = index x interval)
   long nextSeries_ = 0; ///< index of the next series output time
   double lastVtkTime_ = -1.0, lastSeriesTime_ = -1.0;             ///< last written, final frame included (s)

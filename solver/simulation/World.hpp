@@ -235,6 +235,16 @@ struct ContactPatch {
   std::int32_t points = 0;         ///< engaged sample points (unit: -)
 };
 
+/// One contact point force on a traced body (World::setTracedBodies): what `armour stress`
+/// replays on a deformable model of the unit (simulation/UnitLoads.hpp).
+struct TracedContact {
+  BodyId body = 0;                 ///< the traced body the force acts on
+  std::int64_t other = -1;         ///< the other body, or -1 for static geometry (a plane or piece)
+  Vec3 point = Vec3::Zero();       ///< where it acts, world (unit: m)
+  Vec3 force = Vec3::Zero();       ///< on `body` (unit: N)
+  double normalForce = 0.0;        ///< its part along the contact normal (unit: N)
+};
+
 /// Why a run had to stop.
 class SimulationError : public std::runtime_error {
 public:
@@ -314,6 +324,14 @@ public:
   /// settings.recordContacts (or setRecordContacts(true)).
   [[nodiscard]] const std::vector<ContactPatch>& contactPatches() const { return patches_; }
   void setRecordContacts(bool on) { settings_.recordContacts = on; }
+  /// Keep the point forces of every contact on these bodies in each force evaluation
+  /// (tracedContacts()); empty: none. Changes no result.
+  void setTracedBodies(const std::vector<BodyId>& bodies);
+  /// The point forces on the traced bodies in the last force evaluation, in pair order (penalty:
+  /// each engaged sample point; constraint: each reduced point, its mean force over the last
+  /// substep; fdem: each element-pair record). Pairs not examined (none of their bodies awake)
+  /// are absent: their forces are those of the evaluation in which they fell asleep.
+  [[nodiscard]] const std::vector<TracedContact>& tracedContacts() const { return traced_; }
   /// Evaluate the contact forces of the current state without stepping (the guard rails apply:
   /// a deep initial overlap throws SimulationError naming the bodies). For `armour check`.
   void evaluateContacts();
@@ -517,6 +535,12 @@ private:
   bool boxesValid_ = false;
   StepStatistics stats_;
   std::vector<ContactPatch> patches_;
+  std::vector<std::uint8_t> isTraced_;  ///< per body: 1 = its contact point forces go to traced_
+  std::vector<TracedContact> traced_;
+  /// Whether a pair's point forces are traced (either body traced).
+  [[nodiscard]] bool tracesPair(const contact::BodyPair& key) const;
+  /// Append one point force of pair `key` (on A; B gets minus it) to traced_ for its traced bodies.
+  void traceContact(const contact::BodyPair& key, const Vec3& point, const Vec3& forceOnA, double normalForce);
   double contactEnergy_ = 0.0;  ///< J, last force evaluation
   double externalWork_ = 0.0;   ///< J, since the start
   std::vector<std::shared_ptr<LoadStage>> loadStages_;

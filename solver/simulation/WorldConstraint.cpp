@@ -277,6 +277,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
   countSampleLists(stepLists_);
   contactEnergy_ = 0.0; // the soft constraints' elastic energy is not tracked (docs/theory.md)
   patches_.clear();
+  traced_.clear();
   contactCount_.assign(nBodies, 0);
   maxContactForce_.assign(nBodies, 0.0);
   for (const auto& m : manifolds) {
@@ -298,6 +299,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
     record.bodyA = a;
     record.bodyB = isStatic ? -1 : static_cast<std::int64_t>(key.second);
     Vec3 weighted = Vec3::Zero();
+    const bool traced = tracesPair(key);
     for (; c < constraints_.patches.size() && constraintPair_[c] == pairIndex; ++c) {
       const contact::ContactConstraint& k = constraints_.patches[c];
       for (const contact::ConstraintPoint& p : constraints_.pointsOf(k)) {
@@ -318,6 +320,7 @@ void World::storeConstraintResults(const std::vector<PairManifold>& manifolds, d
           torques[key.second] -= (point - bodies_.position(key.second)).cross(force);
         }
         const double fn = p.normalImpulse / h;
+        if (traced) traceContact(key, point, force, fn);
         record.force += force;
         record.normalForce += fn;
         weighted += fn * point;

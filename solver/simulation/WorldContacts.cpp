@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +40,12 @@ struct World::PairWork {
   Vec3 weightedPoint = Vec3::Zero(); ///< sum of normal force x point (N m)
   Vec3 pointSum = Vec3::Zero();      ///< sum of the points (m)
   double normalForce = 0.0;          ///< sum of normal forces (N)
+  /// Point forces on A (point, force, normal force) when the pair is traced (World::setTracedBodies).
+  struct Traced {
+    Vec3 point, force;
+    double normalForce;
+  };
+  std::vector<Traced> traced;
   /// fdem, body pairs: median depth at which the potential of the pair's surface elements peaks
   /// (m); the overlap guard stops the run at 0.8 of it (infinite for static geometry: its depth
   /// never fades).
@@ -201,12 +208,14 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
   const Vec3& xA = pa.position;
   const Vec3& xB = bodies_.position(b);
   pw.history.reserve(records.size());
+  const bool traced = tracesPair(pw.key);
   for (const auto& r : records) {
     // The elastic force splits into its part along the contact normal, which goes through the law
     // with the dashpot and the friction cap, and the rest (the pull of a side strip along the
     // surface), applied as it is: the sum stays the potential's exact, conservative force.
     const double elastic = r.force.dot(r.normal);
     const Vec3 elasticRest = r.force - elastic * r.normal;
+    if (traced) pw.traced.push_back({r.point, r.force, std::max(elastic, 0.0)});
     if (!(elastic > 0.0) || !(r.stiffness > 0.0)) {
       pw.forceA += r.force;
       pw.torqueA += r.torque;
@@ -233,6 +242,7 @@ void World::fdemPairForces(PairWork& pw, double dt) const {
     // The elastic part keeps its exact torque (the potential's, conservative); the dashpot and
     // friction act at the traction centre.
     const Vec3 extra = total - r.force;
+    if (traced) pw.traced.back() = {r.point, total, f.normalForce};
     pw.maxPointForce = std::max(pw.maxPointForce, total.norm());
     pw.weightedPoint += f.normalForce * r.point;
     pw.pointSum += r.point;
@@ -384,6 +394,7 @@ void World::computeForces(double dt, double stateTime) {
     const double beta = contact::dampingTime(params, effectiveMass, patch.stiffness, dashpotStep(dt));
     const BodyId b = plane ? a : pw.key.second;
     const Vec3& xB = bodies_.position(b);
+    const bool traced = tracesPair(pw.key);
     pw.history.reserve(engaged.size());
     for (const auto& e : engaged) {
       // For B's samples (reverse bit) the normal was flipped to push A: the law always sees A
@@ -409,6 +420,7 @@ void World::computeForces(double dt, double stateTime) {
       pw.elasticEnergy += 0.5 * (k * e.depth * e.depth + kt * stretch * stretch);
       pw.forceA += f.force;
       pw.torqueA += (e.point - xA).cross(f.force);
+      if (traced) pw.traced.push_back({e.point, f.force, f.normalForce});
       if (!plane) {
         pw.forceB -= f.force;
         pw.torqueB -= (e.point - xB).cross(f.force);
@@ -428,6 +440,7 @@ void World::computeForces(double dt, double stateTime) {
   patches_.clear();
   contactCount_.assign(nBodies, 0);
   maxContactForce_.assign(nBodies, 0.0);
+  traced_.clear();
   PairHistories nextHistory;
   nextHistory.reserve(history_.size() + 16);
   for (auto& pw : work) {
@@ -450,6 +463,7 @@ void World::computeForces(double dt, double stateTime) {
     }
     stats_.contactPoints += pw.history.size();
     contactEnergy_ += pw.elasticEnergy;
+    for (const auto& t : pw.traced) traceContact(pw.key, t.point, t.force, t.normalForce);
     if (settings_.recordContacts && points > 0) {
       ContactPatch patch;
       patch.bodyA = a;
@@ -471,6 +485,32 @@ void World::computeForces(double dt, double stateTime) {
   clock = profile_.add(Stage::Accumulate, clock);
   applyLoadStages(stateTime);
   profile_.add(Stage::Loads, clock);
+}
+
+void World::setTracedBodies(const std::vector<BodyId>& bodies) {
+  isTraced_.assign(bodies_.size(), 0);
+  for (BodyId b : bodies) {
+    if (b >= bodies_.size()) throw std::out_of_range(fmt::format("setTracedBodies: no body {}", b));
+    isTraced_[b] = 1;
+  }
+  if (bodies.empty()) isTraced_.clear();
+  traced_.clear();
+}
+
+bool World::tracesPair(const contact::BodyPair& key) const {
+  if (isTraced_.empty()) return false;
+  if (key.first < isTraced_.size() && isTraced_[key.first] != 0) return true;
+  return (key.second & kStaticBits) == 0 && key.second < isTraced_.size() && isTraced_[key.second] != 0;
+}
+
+void World::traceContact(const contact::BodyPair& key, const Vec3& point, const Vec3& forceOnA, double normalForce) {
+  const bool bodyPair = (key.second & kStaticBits) == 0;
+  if (key.first < isTraced_.size() && isTraced_[key.first] != 0) {
+    traced_.push_back({key.first, bodyPair ? static_cast<std::int64_t>(key.second) : -1, point, forceOnA, normalForce});
+  }
+  if (bodyPair && key.second < isTraced_.size() && isTraced_[key.second] != 0) {
+    traced_.push_back({key.second, static_cast<std::int64_t>(key.first), point, -forceOnA, normalForce});
+  }
 }
 
 void World::keepSleepingHistory(PairHistories& nextHistory) {
