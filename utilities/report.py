@@ -112,6 +112,48 @@ Render()
     tmp.replace(path)
 
 
+def stress_section(run, folder, figures, table, fmt):
+    """The units' stresses, when `armour stress` has analysed the run (RUN/stress/): a table and a
+    figure of the largest body stress per unit against the tensile strength."""
+    units_csv, summary_json = run / "stress" / "units.csv", run / "stress" / "summary.json"
+    if not units_csv.exists() or not summary_json.exists():
+        return ["<h2>Stress in the units</h2>",
+                "<p>Not analysed: record the units' loads (<code>--set 'output.unit_loads=[unit_*]'</code>) and run "
+                "<code>armour stress RUN_DIR</code> before the report (docs/user-guide.md).</p>"]
+    st = json.loads(summary_json.read_text())
+    strength = float(st["strength_pa"])
+    with open(units_csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        return []
+    rows.sort(key=lambda r: -float(r["max_body_sigma1_pa"]))
+    names = [r["name"] for r in rows]
+    body = [float(r["max_body_sigma1_pa"]) / 1e6 for r in rows]
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    ax.bar(range(len(rows)), body, color=["#c0392b" if b > strength / 1e6 else "#2e86c1" for b in body])
+    ax.axhline(strength / 1e6, color="k", ls="--", lw=1, label=f"tensile strength {strength / 1e6:.3g} MPa")
+    ax.set_xticks(range(len(rows)), names, rotation=90, fontsize=7)
+    ax.set_ylabel("largest body tension (MPa)")
+    ax.set_title("largest tension in each unit, away from its contacts (armour stress)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(folder / "stress.png", dpi=120)
+    plt.close(fig)
+    figures.append(("stress.png", "Largest tension in each unit away from its contacts, against the tensile strength"))
+    over = sum(1 for b in body if b > strength / 1e6)
+    table_rows = [[html.escape(r["name"]), fmt(float(r["max_body_sigma1_pa"]) / 1e6), fmt(float(r["time_s"])),
+                   html.escape(r["event"]), fmt(float(r["max_sigma1_pa"]) / 1e6),
+                   "<b>above</b>" if r["over_strength"] == "1" else "below"] for r in rows[:20]]
+    m = st.get("model", {})
+    return ["<h2>Stress in the units</h2>",
+            f"<p>{over} of {len(rows)} analysed units above the tensile strength {strength / 1e6:.3g} MPa "
+            f"(tet{10 if m.get('order') == 2 else 4} meshes, contact forces spread over {fmt(m.get('spread_radius_dn'))} "
+            f"Dn; body stress at least {fmt(m.get('away_dn'))} Dn from every contact). Impact stresses scale with "
+            "the square root of the contact stiffness (docs/fidelity.md, \"Stress from a rigid replay\"). "
+            "Map: <code>stress/stress_map.vtp</code> in ParaView.</p>",
+            table(table_rows, ["unit", "body tension (MPa)", "at t (s)", "event", "at a contact (MPa)", "strength"])]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", type=Path)
@@ -247,6 +289,7 @@ def main():
     simulated = (f"simulated: S = {fmt(d.get('S'))}, N<sub>od</sub> = {fmt(d.get('Nod'))}, "
                  f"{fmt(d.get('displaced_units'))} of {fmt(summary.get('units'))} units displaced")
     run = a.run if a.run is not None else Path(summary.get("run", "."))
+    stress_parts = stress_section(run, folder, figures, table, fmt)
     pvd = run / "bodies.pvd"
     if pvd.exists():
         write_paraview_state(folder / "paraview_state.py", pvd.resolve())
@@ -274,6 +317,7 @@ def main():
         table(formula_rows, ["formula", "applies", "prediction", "note", "source"]),
         "<p>Each formula is applied only within the range of the tests it was fitted to (docs/report.md); "
         "outside it the table says why it does not apply.</p>",
+    ] + stress_parts + [
         "<h2>Figures</h2>",
     ]
     for name, caption in figures:

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <memory>
 
@@ -56,6 +57,7 @@ struct UnitResult {
   std::size_t elements = 0;
   double meshSeconds = 0.0;   ///< meshing and factoring (unit: s of wall time)
   double solveSeconds = 0.0;  ///< all load cases (unit: s of wall time)
+  std::size_t solved = 0;     ///< load cases solved (the others repeat the one before)
 };
 
 void checkRequest(const StressRequest& o) {
@@ -95,6 +97,14 @@ std::vector<std::size_t> chooseUnits(const io::UnitLoads& loads, const StressReq
   return out;
 }
 
+/// The same loads and spin, bit for bit.
+bool sameLoadCase(const io::UnitLoadRecord& a, const io::UnitLoadRecord& b) {
+  if (a.angularVelocity != b.angularVelocity || a.loads.size() != b.loads.size()) return false;
+  for (std::size_t i = 0; i < a.loads.size(); ++i)
+    if (a.loads[i].point != b.loads[i].point || a.loads[i].force != b.loads[i].force) return false;
+  return true;
+}
+
 analysis::StressSample sampleOf(const io::UnitLoadRecord& r, const deformable::UnitStressResult& s) {
   analysis::StressSample out;
   out.time = r.time;
@@ -114,7 +124,22 @@ analysis::StressSample sampleOf(const io::UnitLoadRecord& r, const deformable::U
   return out;
 }
 
-UnitResult analyseUnit(const io::UnitLoads& loads, std::size_t unit, const StressRequest& o,
+/// The case of a record.
+deformable::UnitLoadCase caseOf(const io::UnitLoadRecord& r) {
+  deformable::UnitLoadCase c;
+  c.angularVelocity = r.angularVelocity;
+  for (const io::UnitLoad& l : r.loads) c.loads.push_back({l.point, l.force});
+  return c;
+}
+
+/// A file name for a unit: characters other than [A-Za-z0-9_.-] as '_'.
+std::string fileNameOf(const std::string& name) {
+  std::string s;
+  for (char ch : name) s += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.') ? ch : '_';
+  return s;
+}
+
+UnitResult analyseUnit(const io::UnitLoads& loads, std::size_t unit, const StressRequest& o, const fs::path& out,
                        const std::shared_ptr<spdlog::logger>& log) {
   using Clock = std::chrono::steady_clock;
   UnitResult res;
@@ -136,30 +161,40 @@ UnitResult analyseUnit(const io::UnitLoads& loads, std::size_t unit, const Stres
   settings.spreadRadius = o.radius * u.dn;
   settings.awayDistance = o.away * u.dn;
   const auto t0 = Clock::now();
-  const deformable::UnitStressModel model(u.surface, settings, fmt::format("unit '{}'", u.name));
+  deformable::UnitStressModel model(u.surface, settings, fmt::format("unit '{}'", u.name));
   const auto t1 = Clock::now();
   res.elements = model.elementCount();
   res.stress.resize(res.records.size());
-  const auto cases = static_cast<std::int64_t>(res.records.size());
+  // A record whose loads and spin are those of the one before (a unit asleep among sleepers) has
+  // its stress: only the others are solved.
+  std::vector<std::size_t> solve;
+  for (std::size_t k = 0; k < res.records.size(); ++k)
+    if (k == 0 || !sameLoadCase(*res.records[k], *res.records[k - 1])) solve.push_back(k);
+  const auto cases = static_cast<std::int64_t>(solve.size());
   // Load cases in parallel, each written to its own slot: the same results on any thread count.
 #pragma omp parallel for schedule(dynamic, 4)
-  for (std::int64_t k = 0; k < cases; ++k) {
-    const io::UnitLoadRecord& r = *res.records[static_cast<std::size_t>(k)];
-    deformable::UnitLoadCase c;
-    c.angularVelocity = r.angularVelocity;
-    for (const io::UnitLoad& l : r.loads) c.loads.push_back({l.point, l.force});
-    res.stress[static_cast<std::size_t>(k)] = model.evaluate(c);
+  for (std::int64_t i = 0; i < cases; ++i) {
+    const std::size_t k = solve[static_cast<std::size_t>(i)];
+    res.stress[k] = model.evaluate(caseOf(*res.records[k]));
   }
+  for (std::size_t k = 1; k < res.records.size(); ++k)
+    if (sameLoadCase(*res.records[k], *res.records[k - 1])) res.stress[k] = res.stress[k - 1];
+  res.solved = solve.size();
   res.solveSeconds = std::chrono::duration<double>(Clock::now() - t1).count();
   res.meshSeconds = std::chrono::duration<double>(t1 - t0).count();
   for (std::size_t k = 0; k < res.records.size(); ++k) res.samples.push_back(sampleOf(*res.records[k], res.stress[k]));
+  // The unit at its worst record, for ParaView (body frame).
+  const std::size_t worst = static_cast<std::size_t>(
+      std::max_element(res.stress.begin(), res.stress.end(),
+                       [](const auto& a, const auto& b) { return a.sigma1Away < b.sigma1Away; }) - res.stress.begin());
+  model.writeVtu(caseOf(*res.records[worst]), out / (fileNameOf(u.name) + "-peak.vtu"));
   analysis::StressEventSettings events;
   events.rockingTravel = kRockingTravel * u.dn;
   res.summary = analysis::summarizeUnitStress(res.samples, events);
   const auto& m = res.samples[res.summary.maxAway];
-  log->info("unit '{}': {} elements ({} s to mesh and factor), {} load cases in {:.2f} s; largest body stress {:.3g} MPa "
-            "at t = {:.4g} s, largest sigma_1 at a contact {:.3g} MPa",
-            u.name, res.elements, fmt::format("{:.2f}", res.meshSeconds), res.records.size(), res.solveSeconds,
+  log->info("unit '{}': {} elements ({} s to mesh and factor), {} load cases ({} solved, the others repeat the one "
+            "before) in {:.2f} s; largest body stress {:.3g} MPa at t = {:.4g} s, largest sigma_1 at a contact {:.3g} MPa",
+            u.name, res.elements, fmt::format("{:.2f}", res.meshSeconds), res.records.size(), res.solved, res.solveSeconds,
             1e-6 * m.sigma1Away, m.time, 1e-6 * res.samples[res.summary.maxSigma1].sigma1);
   return res;
 }
@@ -238,9 +273,10 @@ void writeSummaryJson(const fs::path& path, const std::vector<UnitResult>& resul
     for (std::size_t i = 0; i < results.size(); ++i) {
       const UnitResult& r = results[i];
       const auto& a = r.samples[r.summary.maxAway];
-      out << fmt::format("    {{\"name\": {}, \"elements\": {}, \"load_cases\": {}, \"max_body_sigma1_pa\": {}, "
-                         "\"time_s\": {}, \"max_sigma1_pa\": {}, \"max_differential_pa\": {}, \"events\": {}}}{}\n",
-                         core::jsonString(r.unit->name), r.elements, r.samples.size(), n(a.sigma1Away), n(a.time),
+      out << fmt::format("    {{\"name\": {}, \"elements\": {}, \"load_cases\": {}, \"solved\": {}, "
+                         "\"solve_seconds\": {}, \"max_body_sigma1_pa\": {}, \"time_s\": {}, \"max_sigma1_pa\": {}, \"max_differential_pa\": {}, \"events\": {}}}{}\n",
+                         core::jsonString(r.unit->name), r.elements, r.samples.size(), r.solved, n(r.solveSeconds),
+                         n(a.sigma1Away), n(a.time),
                          n(r.samples[r.summary.maxSigma1].sigma1), n(r.samples[r.summary.maxDifferential].differential),
                          r.summary.events.size(), i + 1 < results.size() ? "," : "");
     }
@@ -288,7 +324,7 @@ void runStress(const StressRequest& o) {
             o.run, loads.units.size(), loads.records.size(), o.order == 1 ? 4 : 10, o.tets, o.radius, o.away,
             o.youngModulus, o.poissonRatio, o.strength);
   std::vector<UnitResult> results;
-  for (std::size_t u : chooseUnits(loads, o)) results.push_back(analyseUnit(loads, u, o, log));
+  for (std::size_t u : chooseUnits(loads, o)) results.push_back(analyseUnit(loads, u, o, out, log));
   writeUnitsCsv(out / "units.csv", results, o.strength);
   writeSeriesCsv(out / "series.csv", results);
   writeEventsCsv(out / "events.csv", results);
@@ -312,7 +348,7 @@ void runStress(const StressRequest& o) {
   fmt::print("{} of {} units above the tensile strength {:.3g} MPa; outputs in {}\n", over, results.size(),
              1e-6 * o.strength, out.string());
   log->info("{} of {} units above {} Pa; wall time {:.2f} s; outputs: units.csv, series.csv, events.csv, summary.json, "
-            "stress_map.vtp in {}", over, results.size(), o.strength, wall, out.string());
+            "stress_map.vtp, <unit>-peak.vtu in {}", over, results.size(), o.strength, wall, out.string());
 }
 
 } // namespace

@@ -7,8 +7,9 @@
 /// record is solved quasi-statically with inertia relief (deformable/UnitStress.hpp). Writes, in
 /// RUN_DIR/stress/: units.csv (per unit: largest stresses, times, places, verdict against the
 /// tensile strength), series.csv (per record), events.csv (the peaks and their causes),
-/// summary.json, and stress_map.vtp (the units at their last pose, coloured by their largest
-/// body stress: the map of units above the strength, for ParaView).
+/// summary.json, stress_map.vtp (the units at their last pose, coloured by their largest body
+/// stress: the map of units above the strength, for ParaView) and <unit>-peak.vtu (the stress
+/// field inside each unit at its worst record).
 
 #include "app/CommandContext.hpp"
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "deformable/UnitStress.hpp"
 
+#include "deformable/DeformableVtu.hpp"
 #include "deformable/StressFields.hpp"
 #include "geometry/Tetrahedralizer.hpp"
 
@@ -35,6 +36,21 @@ std::size_t UnitStressModel::elementCount() const { return body_->mesh().element
 
 QuasiStaticResult UnitStressModel::solve(const UnitLoadCase& c) const {
   return unit_->solve(c.loads, c.angularVelocity, settings_.spreadRadius);
+}
+
+void UnitStressModel::writeVtu(const UnitLoadCase& c, const std::filesystem::path& path) {
+  const QuasiStaticResult r = solve(c);
+  const auto& reference = body_->mesh().nodes;
+  std::vector<Vec3> posed(reference.size());
+  for (std::size_t a = 0; a < reference.size(); ++a) posed[a] = reference[a] + r.displacement[a];
+  body_->setPositions(posed);
+  // Restored even when the write throws: the model's later cases read the reference state.
+  struct Restore {
+    DeformableBody& body;
+    const std::vector<Vec3>& reference;
+    ~Restore() { body.setPositions(reference); }
+  } restore{*body_, reference};
+  writeDeformableVtu(*body_, path);
 }
 
 UnitStressResult UnitStressModel::evaluate(const UnitLoadCase& c) const {

@@ -19,6 +19,7 @@
 
 #include "geometry/TriangleMesh.hpp"
 
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -58,6 +59,10 @@ public:
   [[nodiscard]] UnitStressResult evaluate(const UnitLoadCase& c) const;
   /// The stress field of a case, per element (for a VTU of the worst case).
   [[nodiscard]] QuasiStaticResult solve(const UnitLoadCase& c) const;
+
+  /// A VTU of case `c` for ParaView (DeformableVtu.hpp): the unit in its body frame with its
+  /// displacements and stress fields (principal stresses, von Mises: frame-free).
+  void writeVtu(const UnitLoadCase& c, const std::filesystem::path& path);
 
   [[nodiscard]] const DeformableBody& body() const { return *body_; }
   [[nodiscard]] std::size_t elementCount() const;

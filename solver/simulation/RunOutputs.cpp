@@ -2,6 +2,7 @@
 #include "simulation/RunOutputs.hpp"
 
 #include "core/BuildInfo.hpp"
+#include "core/Error.hpp"
 
 #include <fmt/format.h>
 
@@ -114,6 +115,11 @@ RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const Ru
     }
   }
   if (!scene.output.unitLoads.empty()) {
+    if (resume && resumeState.empty())
+      core::failInput((scene.output.folder / "checkpoint.nc").string(),
+                      "the run that wrote this checkpoint did not record unit loads, so the loads of its sleeping "
+                      "units are not in it and cannot be recorded from here; remove output.unit_loads to continue it, "
+                      "or start the run anew with it");
     UnitLoadsSettings u;
     for (std::size_t i : io::unitLoadBodies(scene)) {
       u.bodies.push_back(built.bodyIndexOfSceneBody[i]);
