@@ -7,6 +7,7 @@
 #include "core/Error.hpp"
 #include "core/JsonWriter.hpp"
 #include "core/Log.hpp"
+#include "contact/LevelSet.hpp"
 #include "deformable/DeformableBody.hpp"
 #include "deformable/DeformableCheckpoint.hpp"
 #include "deformable/DeformableVtu.hpp"
@@ -98,7 +99,34 @@ deformable::DeformableSettings bodySettings(const io::DeformableScene& s, double
   d.bodyContact = s.parts.size() > 1;
   d.contactPenalty = s.contactPenalty;
   d.contactDamping = s.contactDamping;
+  d.rigidContact = !s.rigidBodies.empty();
   return d;
+}
+
+/// The fixed rigid bodies: each library shape meshed at its volume (centred on its centroid) and
+/// given a level set; `levelSets` keeps them alive for the body.
+std::vector<deformable::RigidObstacle> rigidObstacles(const io::DeformableScene& scene,
+                                                      std::vector<std::unique_ptr<contact::LevelSet>>& levelSets,
+                                                      const std::shared_ptr<spdlog::logger>& log) {
+  std::vector<deformable::RigidObstacle> out;
+  for (const io::RigidPart& r : scene.rigidBodies) {
+    geometry::ShapeRequest request;
+    request.volume = r.part.volume;
+    request.seed = r.part.shapeSeed;
+    request.params = r.part.params;
+    contact::LevelSetSettings settings;
+    settings.cellsPerDn = r.cellsPerDn;
+    const std::string source = fmt::format("{}: rigid_bodies '{}'", scene.file.string(), r.part.name);
+    levelSets.push_back(std::make_unique<contact::LevelSet>(geometry::makeShape(r.part.shape, request), settings, source));
+    deformable::RigidObstacle o;
+    o.levelSet = levelSets.back().get();
+    o.position = r.part.position;
+    o.orientation = r.part.orientation;
+    out.push_back(o);
+    log->info("rigid body '{}': {} of {} m^3, fixed, level set cells of {:.4g} m", r.part.name, r.part.shape,
+              r.part.volume, o.levelSet->cellSize());
+  }
+  return out;
 }
 
 void writeSummary(const fs::path& path, const deformable::DeformableBody& body, const deformable::StressHistory& h,
@@ -181,6 +209,8 @@ void runDeform(const DeformRequest& o) {
     }
   }
   body.setVelocities(velocity);
+  std::vector<std::unique_ptr<contact::LevelSet>> levelSets;
+  if (!scene.rigidBodies.empty()) body.setObstacles(rigidObstacles(scene, levelSets, log));
   const double dt = body.stableStep().dt;
   log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: {}{}); "
             "viscosity {:.4g} Pa s",
@@ -269,6 +299,11 @@ void runDeform(const DeformRequest& o) {
             "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
             1e-6 * e.tension.value, e.tension.time, partOfElementName[e.tension.element], e.tension.element,
             1e-6 * e.differential.value, e.differential.time, 1e-6 * e.vonMises.value);
+  for (std::size_t k = 0; k < body.obstacleLoads().size(); ++k) {
+    const Vec3& f = body.obstacleLoads()[k].force;
+    log->info("rigid body '{}' carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", scene.rigidBodies[k].part.name,
+              f.x(), f.y(), f.z());
+  }
   log->info("outputs: {} (ParaView), {}, {}, {}", pvd.string(), historyFile.string(), (out / "summary.json").string(),
             checkpoint.string());
 }

@@ -171,6 +171,7 @@ public:
   /// the next step (settings().rigidContact; throws core::InputError otherwise). Their level sets
   /// must outlive the body or the next call.
   void setObstacles(std::vector<RigidObstacle> obstacles);
+  [[nodiscard]] const std::vector<RigidObstacle>& obstacles() const { return obstacles_; }
   /// What the contact did to each rigid body at the last force evaluation, in setObstacles' order.
   [[nodiscard]] const std::vector<ObstacleLoad>& obstacleLoads() const { return obstacleLoads_; }
   /// Body contact (null when settings().bodyContact is off).

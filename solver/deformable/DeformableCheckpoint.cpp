@@ -90,6 +90,17 @@ std::string setupIdentity(const DeformableBody& body) {
                      "contact.rigid = {}\ncontact.bodies = {}\ncontact.penalty = {} Pa\ncontact.damping = {}\n",
                      s.contactGradient, s.friction, s.frictionStiffnessRatio, s.rigidContact, s.bodyContact,
                      s.contactPenalty, s.contactDamping);
+  // The rigid bodies (a restart among others is another setup): pose, scale, level-set grid.
+  for (std::size_t k = 0; k < body.obstacles().size(); ++k) {
+    const RigidObstacle& o = body.obstacles()[k];
+    const auto& q = o.orientation;
+    out += fmt::format("rigid[{}] = position [{}, {}, {}] m, orientation [{}, {}, {}, {}], scale {}", k, o.position.x(),
+                       o.position.y(), o.position.z(), q.w(), q.x(), q.y(), q.z(), o.scale);
+    if (o.levelSet != nullptr)
+      out += fmt::format(", level set cell {} m from [{}, {}, {}]", o.levelSet->cellSize(), o.levelSet->origin().x(),
+                         o.levelSet->origin().y(), o.levelSet->origin().z());
+    out += '\n';
+  }
   return out;
 }
 

@@ -22,12 +22,13 @@ namespace {
 
 using namespace schema;
 
-const KeyList kTopKeys{"description", "seed", "material", "element", "f_bar", "gravity", "bodies", "half_spaces",
-                       "contact",     "run",  "output"};
+const KeyList kTopKeys{"description", "seed", "material", "element", "f_bar", "gravity", "bodies", "rigid_bodies",
+                       "half_spaces", "contact", "run", "output"};
 const KeyList kMaterialKeys{"density", "young_modulus", "poisson_ratio", "viscosity", "mass_damping"};
 const KeyList kBodyKeys{"name",        "shape",    "volume", "tets", "shape_seed",        "params", "box",
                         "cells",       "position", "orientation", "velocity", "random_orientation", "grid"};
 const KeyList kGridKeys{"counts", "spacing"};
+const KeyList kRigidKeys{"name", "shape", "volume", "shape_seed", "params", "position", "orientation", "cells_per_dn"};
 const KeyList kHalfSpaceKeys{"point", "normal"};
 const KeyList kContactKeys{"friction", "gradient", "penalty", "damping"};
 const KeyList kRunKeys{"duration", "step_safety", "mass_scaling", "frames_every", "stress_every", "checkpoint_every"};
@@ -36,32 +37,37 @@ const KeyList kOutputKeys{"folder"};
 /// Largest tetrahedra asked of one shape: beyond this a size was probably given in the wrong unit.
 constexpr std::uint64_t kMaxTets = 2'000'000;
 
+/// The library shape of a body: shape, volume, shape_seed, params.
+void readShape(const Block& b, DeformablePart& p) {
+  p.shape = b.text("shape", "a shape of the library (armour shape list), e.g. vcross");
+  std::vector<std::string_view> valid;
+  for (const auto& g : geometry::shapeGenerators()) valid.push_back(g.name);
+  if (std::find(valid.begin(), valid.end(), p.shape) == valid.end()) {
+    b.failValue("shape", fmt::format("unknown shape{}; the shapes are: {}", suggestion(p.shape, valid),
+                                     fmt::join(valid, ", ")));
+  }
+  p.volume = b.number("volume", {"m^3", kPositive, "14 (seed 002's Vcross)"});
+  p.shapeSeed = b.integer("shape_seed", 0, "the seed of a random shape (rock, voronoi-rock)", 1);
+  if (b.has("params")) {
+    const YAML::Node params = b.get("params");
+    if (!params.IsMap()) b.failValue("params", "expected a mapping of the generator's parameters, e.g. {points: 12}");
+    for (const auto& kv : params) {
+      double v = 0.0;
+      if (!kv.second.IsScalar() || !YAML::convert<double>::decode(kv.second, v) || !std::isfinite(v))
+        b.failValue("params", fmt::format("parameter '{}' = {}: expected a finite number", kv.first.Scalar(),
+                                          valueText(kv.second)));
+      p.params[kv.first.Scalar()] = v; // names and ranges are checked by the generator, which names them
+    }
+  }
+}
+
 DeformablePart readPart(const Block& b, std::size_t index) {
   DeformablePart p;
   p.name = b.text("name", "a name for the body, used in messages and outputs", fmt::format("body_{}", index));
   const int kind = b.oneOf({"shape", "box"}, false, "a library shape meshed by gmsh, or a box of Kuhn cells");
   if (kind == 0) {
-    p.shape = b.text("shape", "a shape of the library (armour shape list), e.g. vcross");
-    std::vector<std::string_view> valid;
-    for (const auto& g : geometry::shapeGenerators()) valid.push_back(g.name);
-    if (std::find(valid.begin(), valid.end(), p.shape) == valid.end()) {
-      b.failValue("shape", fmt::format("unknown shape{}; the shapes are: {}", suggestion(p.shape, valid),
-                                       fmt::join(valid, ", ")));
-    }
-    p.volume = b.number("volume", {"m^3", kPositive, "14 (seed 002's Vcross)"});
+    readShape(b, p);
     p.tets = b.integer("tets", 10, "tetrahedra wanted for the shape; gmsh gets within about 10 %", 2000);
-    p.shapeSeed = b.integer("shape_seed", 0, "the seed of a random shape (rock, voronoi-rock)", 1);
-    if (b.has("params")) {
-      const YAML::Node params = b.get("params");
-      if (!params.IsMap()) b.failValue("params", "expected a mapping of the generator's parameters, e.g. {points: 12}");
-      for (const auto& kv : params) {
-        double v = 0.0;
-        if (!kv.second.IsScalar() || !YAML::convert<double>::decode(kv.second, v) || !std::isfinite(v))
-          b.failValue("params", fmt::format("parameter '{}' = {}: expected a finite number", kv.first.Scalar(),
-                                            valueText(kv.second)));
-        p.params[kv.first.Scalar()] = v; // names and ranges are checked by the generator, which names them
-      }
-    }
     if (p.tets > kMaxTets) b.failValue("tets", fmt::format("more than {} tetrahedra; give fewer", kMaxTets));
     b.refuse("cells", "cells belong to a box; remove it, or give box: [x, y, z] instead of shape");
   } else {
@@ -123,6 +129,18 @@ void readBody(const Block& b, std::size_t index, std::uint64_t seed, std::vector
   }
 }
 
+/// A fixed rigid body of the scene (`rigid_bodies:`): a library shape at a pose.
+RigidPart readRigid(const Block& b, std::size_t index) {
+  RigidPart r;
+  r.part.name = b.text("name", "a name for the rigid body, used in messages and outputs", fmt::format("rigid_{}", index));
+  readShape(b, r.part);
+  r.part.position = b.vec3("position", {"m", kAnyNumber, "[0, 0, -1]: the shape's centroid"});
+  r.part.orientation = readOrientation(b, "orientation");
+  r.cellsPerDn = b.number("cells_per_dn", {"-", kPositive, "24: level-set cells per Dn of the shape"}, r.cellsPerDn);
+  if (r.cellsPerDn > 200.0) b.failValue("cells_per_dn", "more than 200 cells per Dn; give fewer (24 is usual)");
+  return r;
+}
+
 /// The block under `key`, or an empty node (all defaults) when it is absent.
 YAML::Node blockOrEmpty(const Block& parent, std::string_view key) {
   return parent.has(key) ? parent.get(key) : YAML::Node();
@@ -171,6 +189,12 @@ DeformableScene readDeformableScene(const std::filesystem::path& file) {
   const std::uint64_t seed = top.integer("seed", 0, "the seed of random orientations", 1);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     readBody(Block(ctx, bodies[i], indexed("bodies", i), kBodyKeys), i, seed, scene.parts);
+  }
+  if (top.has("rigid_bodies")) {
+    const YAML::Node list = top.get("rigid_bodies");
+    if (!list.IsSequence()) top.failValue("rigid_bodies", "expected a list of {shape, volume, position}, fixed rigid bodies");
+    for (std::size_t i = 0; i < list.size(); ++i)
+      scene.rigidBodies.push_back(readRigid(Block(ctx, list[i], indexed("rigid_bodies", i), kRigidKeys), i));
   }
   if (top.has("half_spaces")) {
     const YAML::Node list = top.get("half_spaces");

@@ -32,6 +32,14 @@ struct DeformablePart {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero(); ///< initial velocity of every node (unit: m/s)
 };
 
+/// A fixed rigid body (`rigid_bodies:`): a library shape at a pose, felt through its level set
+/// (deformable/RigidObstacleContact.hpp). Only shape, volume, shape_seed, params, position and
+/// orientation of `part` are used.
+struct RigidPart {
+  DeformablePart part;
+  double cellsPerDn = 24.0;           ///< level-set cells per Dn (unit: -)
+};
+
 struct DeformableHalfSpace {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< unit: m
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ(); ///< unit outward normal of the solid (normalised on reading)
@@ -48,6 +56,7 @@ struct DeformableScene {
   bool fBar = true;                   ///< F-bar on 10-node elements
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81); ///< unit: m/s^2
   std::vector<DeformablePart> parts;
+  std::vector<RigidPart> rigidBodies; ///< fixed rigid bodies: a deformable unit in a rigid pack
   std::vector<DeformableHalfSpace> halfSpaces;
   double friction = 0.0;              ///< Coulomb mu on the half-spaces (unit: -)
   double contactGradient = 0.0;       ///< G of the half-spaces (unit: Pa/m); 0 = 10 E / h

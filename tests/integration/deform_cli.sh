@@ -90,4 +90,28 @@ wait "$pid" || status=$?
 for f in checkpoint.bin stress_history.csv; do
   cmp "$out/rocks/$f" "$out/rocks-stopped/$f" || fail "SIGTERM and restart: $f differs from the uninterrupted run"
 done
-echo "deform CLI: outputs, tension, restart, refusals and the rock dump as expected"
+
+# A deformable beam on two fixed rigid supports (rigid_bodies:, cases/deformable/beam-on-rigid-
+# supports.yaml, coarse: 500 tets, 5 % mass scaling): damped to rest, the supports carry the
+# weight, the added mass's included (it is real mass to gravity), half each within 1 %.
+sed 's/    tets: 3000/    tets: 500/; s/^  duration: 0.04 .*/  duration: 0.04\n  mass_scaling: 0.05/' \
+  "$cases/beam-on-rigid-supports.yaml" > "$out/beam.yaml"
+"$armour" --log-level info deform "$out/beam.yaml" -o "$out/beam" --threads 1 > "$out/beam.log" 2>&1 \
+  || fail "the beam on rigid supports failed: $(tail -n 3 "$out/beam.log")"
+/usr/bin/python3 - "$out/beam.log" <<'PY' || fail "the rigid supports do not carry the beam's weight"
+import re, sys
+log = open(sys.argv[1]).read()
+added = float(re.search(r"([0-9.e+-]+) kg added", log).group(1))
+loads = {m.group(1): float(m.group(2)) for m in re.finditer(r"rigid body '(\w+)' carries \[[^,]+, [^,]+, ([^\]]+)\] N", log)}
+weight = (2340.0 + added) * 9.81
+assert set(loads) == {"left", "right"}, loads
+assert abs(-(loads["left"] + loads["right"]) - weight) < 1e-3 * weight, (loads, weight)
+for k, v in loads.items():
+    assert abs(-v - weight / 2) < 0.01 * weight / 2, (k, v, weight / 2)
+PY
+# A rigid body given twice the keys of a deformable one is refused, naming the key.
+printf 'bodies: [{shape: cube, volume: 1, position: [0, 0, 1]}]\nrigid_bodies: [{shape: cube, volume: 1, position: [0, 0, -1], tets: 10}]\nrun: {duration: 0.001}\n' > "$out/bad-rigid.yaml"
+set +e; msg=$("$armour" --log-level warn deform "$out/bad-rigid.yaml" -o "$out/bad-rigid" 2>&1); code=$?; set -e
+[ $code -eq 2 ] || fail "a rigid body with tets: expected exit 2, got $code: $msg"
+grep -q "rigid_bodies\[0\].tets" <<< "$msg" || fail "a rigid body with tets: the key is not named in: $msg"
+echo "deform CLI: outputs, tension, restart, refusals, the rock dump and the beam on rigid supports as expected"
