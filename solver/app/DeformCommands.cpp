@@ -13,6 +13,9 @@
 #include "deformable/DeformableVtu.hpp"
 #include "deformable/StressHistory.hpp"
 #include "deformable/StructuredBox.hpp"
+#include "geometry/MassProperties.hpp"
+#include "geometry/MeshFile.hpp"
+#include "geometry/MeshValidation.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "geometry/Tetrahedralizer.hpp"
 #include "io/DeformableScene.hpp"
@@ -46,7 +49,21 @@ struct DeformRequest {
 /// a box of Kuhn cells (centred on its centre).
 geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string& source) {
   geometry::TetMesh mesh;
-  if (!p.shape.empty()) {
+  if (!p.meshFile.empty()) {
+    geometry::TriangleMesh surface = geometry::readMesh(p.meshFile);
+    const geometry::RepairReport repair = geometry::validateMesh(surface, p.meshFile.string());
+    if (repair.flippedFaces > 0 || repair.inverted)
+      core::logger("deform")->warn("{}: orientation repaired ({} faces flipped{})", p.meshFile.string(),
+                                   repair.flippedFaces, repair.inverted ? ", mesh turned outward" : "");
+    const geometry::MassProperties mp = geometry::computeMassProperties(surface);
+    const double scale = p.volume > 0.0 ? std::cbrt(p.volume / mp.volume) : 1.0;
+    for (auto& v : surface.vertices) v = scale * (v - mp.centroid); // centred on its centroid, as a library shape
+    geometry::TetrahedralizeOptions options;
+    options.targetTetCount = p.tets;
+    options.keepSurface = false;
+    options.source = fmt::format("{}: bodies '{}' ({})", source, p.name, p.meshFile.string());
+    mesh = geometry::tetrahedralize(surface, options);
+  } else if (!p.shape.empty()) {
     geometry::ShapeRequest request;
     request.volume = p.volume;
     request.seed = p.shapeSeed;
@@ -70,7 +87,7 @@ std::vector<geometry::TetMesh> meshParts(const std::vector<io::DeformablePart>& 
   std::map<std::string, geometry::TetMesh> meshed;
   std::vector<geometry::TetMesh> out;
   for (const auto& p : parts) {
-    std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", p.shape, p.volume, p.tets, p.shapeSeed, p.box.x(),
+    std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", p.shape, p.meshFile.string(), p.volume, p.tets, p.shapeSeed, p.box.x(),
                                   p.box.y(), p.box.z(), p.cells[0], p.cells[1], p.cells[2]);
     for (const auto& [name, value] : p.params) key += fmt::format("|{}={}", name, value);
     auto it = meshed.find(key);

@@ -25,7 +25,7 @@ using namespace schema;
 const KeyList kTopKeys{"description", "seed", "material", "element", "f_bar", "gravity", "bodies", "rigid_bodies",
                        "half_spaces", "contact", "run", "output"};
 const KeyList kMaterialKeys{"density", "young_modulus", "poisson_ratio", "viscosity", "mass_damping"};
-const KeyList kBodyKeys{"name",        "shape",    "volume", "tets", "shape_seed",        "params", "box",
+const KeyList kBodyKeys{"name",        "shape",    "mesh",   "volume", "tets", "shape_seed",        "params", "box",
                         "cells",       "position", "orientation", "velocity", "random_orientation", "grid"};
 const KeyList kGridKeys{"counts", "spacing"};
 const KeyList kRigidKeys{"name", "shape", "volume", "shape_seed", "params", "position", "orientation", "cells_per_dn"};
@@ -64,9 +64,20 @@ void readShape(const Block& b, DeformablePart& p) {
 DeformablePart readPart(const Block& b, std::size_t index) {
   DeformablePart p;
   p.name = b.text("name", "a name for the body, used in messages and outputs", fmt::format("body_{}", index));
-  const int kind = b.oneOf({"shape", "box"}, false, "a library shape meshed by gmsh, or a box of Kuhn cells");
-  if (kind == 0) {
-    readShape(b, p);
+  const int kind = b.oneOf({"shape", "box", "mesh"}, false,
+                           "a library shape or a surface mesh file meshed by gmsh, or a box of Kuhn cells");
+  if (kind == 0 || kind == 2) {
+    if (kind == 0) {
+      readShape(b, p);
+    } else {
+      const std::string file = b.text("mesh", "a closed surface mesh file (.stl, .obj, .vtp), relative to the scene file");
+      p.meshFile = std::filesystem::absolute(b.context().baseDir / file).lexically_normal();
+      if (!std::filesystem::exists(p.meshFile))
+        b.failValue("mesh", fmt::format("no such file ({}); give the path relative to the scene file", p.meshFile.string()));
+      p.volume = b.number("volume", {"m^3", kPositive, "5: the mesh scaled to this volume; absent: the file's own size"}, 0.0);
+      b.refuse("shape_seed", "a mesh file is not random; remove shape_seed");
+      b.refuse("params", "a mesh file has no shape parameters; remove params");
+    }
     p.tets = b.integer("tets", 10, "tetrahedra wanted for the shape; gmsh gets within about 10 %", 2000);
     if (p.tets > kMaxTets) b.failValue("tets", fmt::format("more than {} tetrahedra; give fewer", kMaxTets));
     b.refuse("cells", "cells belong to a box; remove it, or give box: [x, y, z] instead of shape");

@@ -17,11 +17,13 @@
 
 namespace armour::io {
 
-/// One body of the mesh: a shape of the library meshed by gmsh, or a box of Kuhn cells.
+/// One body of the mesh: a shape of the library or a surface mesh file meshed by gmsh, or a box of
+/// Kuhn cells.
 struct DeformablePart {
   std::string name;
-  std::string shape;                  ///< library shape (geometry/ShapeLibrary); empty for a box
-  double volume = 0.0;                ///< shape volume (unit: m^3)
+  std::string shape;                  ///< library shape (geometry/ShapeLibrary); empty for a box or a mesh file
+  std::filesystem::path meshFile;     ///< a closed surface mesh (absolute); empty for a library shape or a box
+  double volume = 0.0;                ///< shape volume (unit: m^3); for a mesh file 0 = its own size
   std::uint64_t tets = 0;             ///< wanted tetrahedra of the shape (unit: -)
   std::uint64_t shapeSeed = 1;        ///< seed of a random shape (rock, voronoi-rock)
   std::map<std::string, double> params; ///< the shape generator's parameters (armour shape list)

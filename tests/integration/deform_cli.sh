@@ -114,4 +114,18 @@ printf 'bodies: [{shape: cube, volume: 1, position: [0, 0, 1]}]\nrigid_bodies: [
 set +e; msg=$("$armour" --log-level warn deform "$out/bad-rigid.yaml" -o "$out/bad-rigid" 2>&1); code=$?; set -e
 [ $code -eq 2 ] || fail "a rigid body with tets: expected exit 2, got $code: $msg"
 grep -q "rigid_bodies\[0\].tets" <<< "$msg" || fail "a rigid body with tets: the key is not named in: $msg"
-echo "deform CLI: outputs, tension, restart, refusals, the rock dump and the beam on rigid supports as expected"
+
+# A body from a mesh file: a Dolos exported at 2 m^3, scaled back to 1 m^3 by volume:, centred on
+# its centroid at position:, on the floor; a missing file is refused naming the key.
+"$armour" --log-level warn shape export dolos --volume 2 -o "$out/dolos.stl" > /dev/null
+printf 'bodies: [{name: d, mesh: dolos.stl, volume: 1, tets: 300, position: [0, 0, 1]}]\nhalf_spaces: [{point: [0, 0, 0], normal: [0, 0, 1]}]\nrun: {duration: 0.0005}\n' > "$out/from-mesh.yaml"
+"$armour" --log-level info deform "$out/from-mesh.yaml" -o "$out/from-mesh" --threads 1 > "$out/from-mesh.log" 2>&1 \
+  || fail "a body from a mesh file failed: $(tail -n 3 "$out/from-mesh.log")"
+vol=$(grep -o "body 'd': [0-9]* tetrahedra, [0-9.e+-]* m^3" "$out/from-mesh.log" | awk '{print $5}')
+/usr/bin/python3 -c "import sys; v = float('$vol'); sys.exit(0 if abs(v - 1.0) < 1e-6 else 1)" \
+  || fail "the mesh file's body should be scaled to 1 m^3, got '$vol'"
+sed 's/dolos.stl/missing.stl/' "$out/from-mesh.yaml" > "$out/missing-mesh.yaml"
+set +e; msg=$("$armour" --log-level warn deform "$out/missing-mesh.yaml" -o "$out/missing" 2>&1); code=$?; set -e
+[ $code -eq 2 ] && grep -q "bodies\[0\].mesh = missing.stl: no such file" <<< "$msg" \
+  || fail "a missing mesh file: expected exit 2 naming bodies[0].mesh, got $code: $msg"
+echo "deform CLI: outputs, tension, restart, refusals, the rock dump, the beam on rigid supports and a mesh file as expected"
