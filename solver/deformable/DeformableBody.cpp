@@ -133,7 +133,7 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
       contactGradient_ = 10.0 * settings_.material.youngModulus / (edges / (3.0 * static_cast<double>(surface_.size())));
     }
     omegaContact = contactFrequency(mesh_, surface_, masses_, contactGradient_);
-    if (settings_.friction > 0.0 && !settings_.halfSpaces.empty()) {
+    if (settings_.friction > 0.0) {
       frictionStiffness_ = tributaryAreas(mesh_, surface_);
       for (double& k : frictionStiffness_) {
         k *= settings_.frictionStiffnessRatio * contactGradient_;
@@ -296,7 +296,28 @@ void DeformableBody::computeAccelerations() {
     }
     obstacleLoads_.assign(obstacles_.size(), ObstacleLoad{});
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      obstacleLoads_[o] = addObstacleContact(surface_, state_.positions, obstacles_[o], contactGradient_, contactForces_);
+      if (frictionStiffness_.empty()) {
+        obstacleLoads_[o] = addObstacleContact(surface_, state_.positions, obstacles_[o], contactGradient_, contactForces_);
+        continue;
+      }
+      // With friction: this body's normal forces alone, then the stick-slip springs against it,
+      // whose reaction the rigid body takes too. Anchors after the half-spaces' (setObstacles).
+      const std::size_t n = nodeCount(), slot = settings_.halfSpaces.size() + o;
+      halfSpaceScratch_.assign(n, Vec3::Zero());
+      ObstacleLoad load = addObstacleContact(surface_, state_.positions, obstacles_[o], contactGradient_, halfSpaceScratch_);
+      frictionScratch_.assign(n, Vec3::Zero());
+      const FrictionAnchors anchors{std::span<Vec3>(state_.frictionAnchors).subspan(slot * n, n),
+                                    std::span<std::uint8_t>(state_.frictionActive).subspan(slot * n, n)};
+      const Vec3 friction = addObstacleFriction(halfSpaceScratch_, state_.positions, obstacles_[o].orientation,
+                                                obstacles_[o].position, settings_.friction, frictionStiffness_, anchors,
+                                                frictionScratch_);
+      load.force -= friction;
+      for (std::size_t a = 0; a < n; ++a) {
+        if (frictionScratch_[a] != Vec3::Zero())
+          load.torque -= (state_.positions[a] - obstacles_[o].position).cross(frictionScratch_[a]);
+        contactForces_[a] += halfSpaceScratch_[a] + frictionScratch_[a];
+      }
+      obstacleLoads_[o] = load;
     }
     if (bodyContact_) {
       bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_);
@@ -479,6 +500,12 @@ void DeformableBody::setObstacles(std::vector<RigidObstacle> obstacles) {
                                                   "rigid_contact on to give obstacles");
   }
   obstacles_ = std::move(obstacles);
+  if (!frictionStiffness_.empty()) {
+    // One set of anchors per half-space, then per rigid body; a body added starts unanchored.
+    const std::size_t size = (settings_.halfSpaces.size() + obstacles_.size()) * nodeCount();
+    state_.frictionAnchors.resize(size, Vec3::Zero());
+    state_.frictionActive.resize(size, 0);
+  }
 }
 
 std::vector<Mat3> DeformableBody::elementStresses() const {

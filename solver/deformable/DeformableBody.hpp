@@ -62,9 +62,9 @@ struct DeformableSettings {
   /// with h the mean edge of the surface triangles: a contact layer ten times stiffer than a
   /// surface element, so a pressure sigma sinks in by sigma h / (10 E).
   double contactGradient = 0.0;
-  /// Coulomb coefficient of the half-spaces (unit: -), 0 = frictionless (HalfSpaceFriction.hpp):
-  /// each pressed surface node sticks to an anchor by a tangential spring capped at mu times its
-  /// normal force.
+  /// Coulomb coefficient of the half-spaces and the rigid bodies (unit: -), 0 = frictionless
+  /// (HalfSpaceFriction.hpp): each pressed surface node sticks to an anchor by a tangential spring
+  /// capped at mu times its normal force (on a rigid body the anchor moves with it).
   double friction = 0.0;
   /// Tangential stiffness of a node's stick spring over its normal contact stiffness G A_a
   /// (unit: -), in (0, 1]. 8/9: Mindlin's 2 (1 - nu) / (2 - nu) at nu = 0.2, the rigid solver's
@@ -72,7 +72,7 @@ struct DeformableSettings {
   double frictionStiffnessRatio = 8.0 / 9.0;
   /// Contact with rigid bodies (RigidObstacleContact.hpp), whose poses the caller sets before each
   /// step (setObstacles). The potential gradient is the half-spaces' G (contactGradient); the
-  /// stable step counts it. Frictionless.
+  /// stable step counts it. With `friction`, Coulomb friction as on the half-spaces.
   bool rigidContact = false;
   /// Contact between the disconnected parts of the mesh (BodyContact.hpp). Off: parts pass
   /// through each other.
@@ -222,7 +222,8 @@ private:
   std::vector<Vec3> halfSpaceScratch_;      ///< one half-space's normal nodal forces (friction only)
   std::vector<RigidObstacle> obstacles_;    ///< rigid bodies in contact (setObstacles)
   std::vector<ObstacleLoad> obstacleLoads_; ///< their loads at the last evaluation
-  Vec3 frictionTotal_ = Vec3::Zero();       ///< sum of the friction forces at the last evaluation (unit: N)
+  Vec3 frictionTotal_ = Vec3::Zero();       ///< sum of the half-spaces' friction forces at the last evaluation (unit: N)
+  std::vector<Vec3> frictionScratch_;       ///< one rigid body's friction forces per node (unit: N)
   std::shared_ptr<const BodyContact> bodyContact_;
   BodyContactStats bodyContactStats_;
 };

@@ -19,6 +19,8 @@
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/HalfSpaceContact.hpp"
 
+#include <Eigen/Geometry>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -38,5 +40,13 @@ struct FrictionAnchors {
 Vec3 addHalfSpaceFriction(const std::vector<Vec3>& pressure, const std::vector<Vec3>& positions,
                           const HalfSpace& halfSpace, double mu, const std::vector<double>& stiffness,
                           FrictionAnchors anchors, std::vector<Vec3>& forces);
+
+/// The same against a rigid body (RigidObstacleContact.hpp) at pose (orientation, origin): the
+/// normal of node a is the direction of its nodal force from that body, `pressure[a]`
+/// (addObstacleContact on a zeroed vector), and the anchors are kept in the rigid body's frame,
+/// so that a node sticks to a moving body. Returns the sum of the friction forces on the nodes (N).
+Vec3 addObstacleFriction(const std::vector<Vec3>& pressure, const std::vector<Vec3>& positions,
+                         const Eigen::Quaterniond& orientation, const Vec3& origin, double mu,
+                         const std::vector<double>& stiffness, FrictionAnchors anchors, std::vector<Vec3>& forces);
 
 } // namespace armour::deformable

@@ -221,12 +221,13 @@ DeformableScene readDeformableScene(const std::filesystem::path& file) {
     }
   }
   const Block c(ctx, blockOrEmpty(top, "contact"), "contact", kContactKeys);
-  scene.friction = c.number("friction", {"-", kNonNegative, "0.6; 0 frictionless (the half-spaces only)"}, 0.0);
+  scene.friction = c.number("friction", {"-", kNonNegative, "0.6; 0 frictionless (half-spaces and rigid bodies)"}, 0.0);
   scene.contactGradient = c.number("gradient", {"Pa/m", kNonNegative, "0 = 10 E / h"}, 0.0);
   scene.contactPenalty = c.number("penalty", {"Pa", kNonNegative, "0 = 2 E"}, 0.0);
   scene.contactDamping = c.number("damping", {"-", kNonNegative, "0.2"}, 0.0);
-  if (scene.friction > 0.0 && scene.halfSpaces.empty())
-    c.failValue("friction", "acts on the half-spaces, and there are none; add half_spaces or remove friction");
+  if (scene.friction > 0.0 && scene.halfSpaces.empty() && scene.rigidBodies.empty())
+    c.failValue("friction", "acts on the half-spaces and the rigid bodies, and there are none; add half_spaces or "
+                            "rigid_bodies, or remove friction");
 
   if (!top.has("run")) top.failMissing("run", "the run block, at least 'duration'");
   const Block r(ctx, top.get("run"), "run", kRunKeys);

@@ -2,7 +2,9 @@
 // Contact of a deforming body with rigid bodies given by their level sets (issue 26;
 // RigidObstacleContact.hpp, docs/theory.md section 19): on a rigid body's flat face the contact is
 // the half-space's to round-off; action equals reaction exactly, force and moment; a block comes to
-// rest on a rigid slab, which carries its weight and its moment; a rigid slab pushed up lifts it.
+// rest on a rigid slab, which carries its weight and its moment; a rigid slab pushed up lifts it;
+// with friction the block holds on the slab below the friction angle, slides above it at
+// g (sin theta - mu cos theta), and rides on a moving slab.
 #include "contact/LevelSet.hpp"
 #include "core/Error.hpp"
 #include "deformable/DeformableBody.hpp"
@@ -150,6 +152,86 @@ TEST(DeformableRigidContact, ARisingSlabLiftsTheBlock) {
             << " N against m (g + a) = " << expected << " N (" << 100.0 * (push / expected - 1.0) << " %)\n";
   EXPECT_NEAR(lowest, rise, 1e-5);
   EXPECT_NEAR(push, expected, 0.02 * expected);
+}
+
+/// Mass-weighted mean position and velocity of the body's nodes.
+std::pair<Vec3, Vec3> centroidMotion(const DeformableBody& body) {
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t n = 0; n < body.nodeCount(); ++n) {
+    x += body.masses()[n] * body.positions()[n];
+    v += body.masses()[n] * body.velocities()[n];
+    m += body.masses()[n];
+  }
+  return {x / m, v / m};
+}
+
+/// A 1 m tet10 block (one Kuhn cell) on the slab with friction mu, gravity tilted by theta about y
+/// (down-slope +x), viscosity 5 % of critical: the half-space friction test's block
+/// (test_deformable_friction.cpp) on a rigid body instead.
+DeformableBody frictionBlock(double thetaDeg, double mu) {
+  const double theta = thetaDeg * std::numbers::pi / 180.0;
+  DeformableSettings s;
+  s.rigidContact = true;
+  s.friction = mu;
+  s.gravity = 9.81 * Vec3(std::sin(theta), 0.0, -std::cos(theta));
+  s.material.viscosity = 0.05 * criticalViscosity(s.material, 0.5);
+  return DeformableBody(test::boxMesh(Vec3(1, 1, 1), 1, 1, 1, ElementOrder::Quadratic), s, "block with friction");
+}
+
+TEST(DeformableRigidContact, FrictionOnARigidSlabHoldsBelowTheFrictionAngle) {
+  // theta = 20 deg under mu = 0.6: from 0.05 to 0.3 s the block may not creep by more than 1e-7 m,
+  // and the slab takes the weight's down-slope part m g sin(theta) = 7 851 N within 1 %.
+  DeformableBody body = frictionBlock(20.0, 0.6);
+  const Slab slab;
+  body.setObstacles({slab.at()});
+  const double dt = body.stableStep().dt;
+  while (body.time() < 0.05) body.step(dt);
+  const Vec3 x0 = centroidMotion(body).first;
+  while (body.time() < 0.3) body.step(dt);
+  const Vec3 x1 = centroidMotion(body).first;
+  const double downSlope = body.settings().material.density * 9.81 * std::sin(20.0 * std::numbers::pi / 180.0);
+  const Vec3 f = body.obstacleLoads().front().force;
+  std::cout << "friction on a rigid slab, 20 deg, mu 0.6: drift " << (x1 - x0).transpose() << " m; the slab takes "
+            << f.transpose() << " N (down-slope weight " << downSlope << " N)\n";
+  EXPECT_LT(std::abs(x1.x() - x0.x()), 1e-7);
+  EXPECT_NEAR(f.x(), downSlope, 0.01 * downSlope);
+}
+
+TEST(DeformableRigidContact, FrictionOnARigidSlabSlidesAtGSinMinusMuCos) {
+  // mu = 0.2 < tan 20 deg: a = g (sin theta - mu cos theta) = 1.510 m/s^2 within 2 %.
+  DeformableBody body = frictionBlock(20.0, 0.2);
+  const Slab slab;
+  body.setObstacles({slab.at()});
+  const double dt = body.stableStep().dt;
+  while (body.time() < 0.05) body.step(dt);
+  const Vec3 v1 = centroidMotion(body).second;
+  const double t1 = body.time();
+  while (body.time() < 0.25) body.step(dt);
+  const Vec3 v2 = centroidMotion(body).second;
+  const double theta = 20.0 * std::numbers::pi / 180.0;
+  const double expected = 9.81 * (std::sin(theta) - 0.2 * std::cos(theta));
+  const double a = (v2.x() - v1.x()) / (body.time() - t1);
+  std::cout << "friction on a rigid slab, 20 deg, mu 0.2: acceleration " << a << " m/s^2 against " << expected << "\n";
+  EXPECT_NEAR(a, expected, 0.02 * expected);
+}
+
+TEST(DeformableRigidContact, AMovingSlabCarriesTheBlockByFriction) {
+  // The slab slides along x at 0.1 m/s under the block (gravity down, mu 0.6): the block slips
+  // until it moves with the slab (mu g = 5.9 m/s^2: in 17 ms), then sticks to it. At 0.2 s it moves
+  // at 0.1 m/s within 1 %. The anchors ride on the slab; anchors fixed in the world would hold the
+  // block back.
+  DeformableBody body = frictionBlock(0.0, 0.6);
+  const Slab slab;
+  const double dt = body.stableStep().dt;
+  constexpr double kSpeed = 0.1;
+  while (body.time() < 0.2) {
+    body.setObstacles({slab.at(Vec3(kSpeed * (body.time() + dt), 0.0, 0.0))});
+    body.step(dt);
+  }
+  const Vec3 v = centroidMotion(body).second;
+  std::cout << "block on a moving slab: velocity " << v.transpose() << " m/s (the slab's " << kSpeed << ")\n";
+  EXPECT_NEAR(v.x(), kSpeed, 0.01 * kSpeed);
 }
 
 TEST(DeformableRigidContact, ObstaclesNeedRigidContactOn) {

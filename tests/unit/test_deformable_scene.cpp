@@ -96,7 +96,7 @@ TEST(DeformableScene, ErrorsNameTheKeyTheValueAndTheFix) {
        "bodies[0].volume = -1: must be > 0"},
       {"bodies:\n  - {shape: cube, volume: 1}\nrun: {duration: 1}\n", "missing key 'position'"},
       {"bodies: []\nrun: {duration: 1}\n", "expected a list of one or more bodies"},
-      {kMinimal + "contact: {friction: 0.6}\n", "contact.friction = 0.6: acts on the half-spaces, and there are none"},
+      {kMinimal + "contact: {friction: 0.6}\n", "contact.friction = 0.6: acts on the half-spaces and the rigid bodies, and there are none"},
       {kMinimal + "half_spaces: [{point: [0, 0, 0], normal: [0, 0, 0]}]\n", "a zero vector has no direction"},
       {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\n", "missing key 'run'"},
       {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\nrun: {duration: 0}\n",
