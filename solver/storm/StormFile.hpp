@@ -114,11 +114,13 @@ struct StormWriteOptions {
   bool doublePrecision = false; ///< NC_DOUBLE instead of NC_FLOAT for p, u, v, w, alpha, eta
   int deflateLevel = 1;         ///< 0 (none) to 9; 1 is nearly as small as 9 and several times faster
   bool shuffle = true;          ///< byte shuffle before deflate (smaller files for smooth fields)
-  /// Flush every record to disk (nc_sync) as it is appended, so a writer that is killed (SIGKILL,
-  /// a crashed solver) leaves a "<path>.partial" holding every record appended so far. Without it
-  /// HDF5 keeps the records and the time dimension's length in its caches until the file is
-  /// closed, and a killed writer leaves a file with 0 records. Costs one flush per record
-  /// (docs/storm-file.md, "Writing"); the armourSampler function object sets it.
+  /// Close the file after every record and reopen it for the next, so a writer that is killed
+  /// (SIGKILL, a crashed solver) leaves a whole "<path>.partial" holding every record appended so
+  /// far, and other programs can read it meanwhile. Without it HDF5 keeps the records and the time
+  /// dimension's length in its caches until the file is closed, and a killed writer leaves a file
+  /// with 0 records; and a file open for writing can be left unreadable by a kill inside a flush.
+  /// Costs an open and a close per record (docs/storm-file.md, "Writing"); the armourSampler
+  /// function object sets it.
   bool syncEachRecord = false;
 };
 

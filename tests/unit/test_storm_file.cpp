@@ -420,6 +420,37 @@ TEST_F(StormFileTest, WriteIsAtomic) {
   EXPECT_EQ(partial.times().size(), 2u);
 }
 
+// syncEachRecord (the function object's setting): the file is closed between records, so the
+// .partial is whole and readable after every record; a variability model set after the records
+// and the finished file are as without it. (A reader in another process holding the file while
+// the writer reopens it is OutputFiles.SeriesIsReadableWhileTheRunGoesOn's case: the same
+// HDF5_USE_FILE_LOCKING setting. In one process HDF5 cannot open a file for writing that it
+// holds open for reading.)
+TEST_F(StormFileTest, WriterSyncingEachRecordLeavesAWholeFileAfterEveryRecord) {
+  const auto h = makeHeader();
+  StormWriteOptions options;
+  options.syncEachRecord = true;
+  const auto path = file("synced.nc");
+  {
+    StormWriter writer(path, h, options);
+    writer.append(makeRecord(h, 0.0));
+    for (int k = 1; k < 4; ++k) { // a reader needs two records
+      writer.append(makeRecord(h, 0.05 * k));
+      StormReader partial(path + ".partial");
+      EXPECT_EQ(partial.times().size(), static_cast<std::size_t>(k + 1));
+      EXPECT_NO_THROW(partial.validateAllRecords());
+    }
+    writer.setVariability(makeVariability(0.7));
+    EXPECT_TRUE(StormReader(path + ".partial").header().variability.present);
+    writer.finish();
+  }
+  const StormReader synced(path);
+  EXPECT_EQ(synced.times().size(), 4u);
+  EXPECT_NO_THROW(synced.validateAllRecords());
+  EXPECT_EQ(synced.header().variability.classes[0].scale, makeVariability(0.7).classes[0].scale);
+  EXPECT_FALSE(fs::exists(path + ".partial"));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Writer refusals
 // ---------------------------------------------------------------------------------------------
