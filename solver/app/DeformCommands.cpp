@@ -171,6 +171,32 @@ void writeSummary(const fs::path& path, const deformable::DeformableBody& body, 
   });
 }
 
+/// The run log's lines on the body: elements, the step and what sets it, mass scaling.
+void logBody(const std::shared_ptr<spdlog::logger>& log, const deformable::DeformableBody& body,
+             const io::DeformableScene& scene) {
+  const double dt = body.stableStep().dt;
+  log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: {}{}); "
+            "viscosity {:.4g} Pa s",
+            body.mesh().elementCount(), scene.quadratic ? "tet10" : "tet4", body.nodeCount(), dt, scene.stepSafety,
+            body.stableStep().meshBound
+                ? fmt::format("the mesh's frequency bound {:.4g} rad/s (Gershgorin; the smallest element alone would "
+                              "give {:.4g} rad/s)",
+                              body.stableStep().meshFrequency,
+                              2.0 * body.stableStep().waveSpeed / body.massScaling().length)
+                : fmt::format("smallest element {:.4g} m", body.stableStep().lengthMin),
+            body.stableStep().contactFrequency > 0.0
+                ? fmt::format(", contact {:.4g} rad/s", body.stableStep().contactFrequency)
+                : std::string(),
+            body.settings().material.viscosity);
+  if (const auto& ms = body.massScaling(); scene.massScaling > 0.0) {
+    log->info("mass scaling (run.mass_scaling = {}): {} of {} elements heavier, {:.4g} kg added ({:.3g} % of {:.4g} kg; "
+              "at most {:.3g} % of a body's own mass); the smallest element {:.4g} m acts as {:.4g} m ({:.3g} times; the "
+              "contact may hold the step shorter)",
+              scene.massScaling, ms.scaled, body.mesh().elementCount(), ms.addedMass, 100.0 * ms.addedMass / ms.mass,
+              ms.mass, 100.0 * ms.largestPartFraction, ms.lengthMin, ms.length, ms.length / ms.lengthMin);
+  }
+}
+
 void runDeform(const DeformRequest& o) {
   io::DeformableScene scene = io::readDeformableScene(o.scene);
   if (o.durationGiven) scene.duration = o.duration;
@@ -209,6 +235,7 @@ void runDeform(const DeformRequest& o) {
     }
   }
   const geometry::TetMesh merged = deformable::mergeTetMeshes(parts, std::vector<Vec3>(parts.size(), Vec3::Zero()));
+  std::vector<std::unique_ptr<contact::LevelSet>> levelSets; // the rigid bodies' (before the body: they outlive it)
   const double h = std::cbrt(merged.totalVolume() / static_cast<double>(merged.tets.size()));
   deformable::DeformableBody body(
       deformable::makeDeformableMesh(merged, scene.quadratic ? deformable::ElementOrder::Quadratic
@@ -226,30 +253,9 @@ void runDeform(const DeformRequest& o) {
     }
   }
   body.setVelocities(velocity);
-  std::vector<std::unique_ptr<contact::LevelSet>> levelSets;
   if (!scene.rigidBodies.empty()) body.setObstacles(rigidObstacles(scene, levelSets, log));
   const double dt = body.stableStep().dt;
-  log->info("{} elements ({}), {} nodes; step {:.4g} s (safety {} x the limit: {}{}); "
-            "viscosity {:.4g} Pa s",
-            body.mesh().elementCount(), scene.quadratic ? "tet10" : "tet4", body.nodeCount(), dt, scene.stepSafety,
-            body.stableStep().meshBound
-                ? fmt::format("the mesh's frequency bound {:.4g} rad/s (Gershgorin; the smallest element alone would "
-                              "give {:.4g} rad/s)",
-                              body.stableStep().meshFrequency,
-                              2.0 * body.stableStep().waveSpeed / body.massScaling().length)
-                : fmt::format("smallest element {:.4g} m", body.stableStep().lengthMin),
-            body.stableStep().contactFrequency > 0.0
-                ? fmt::format(", contact {:.4g} rad/s", body.stableStep().contactFrequency)
-                : std::string(),
-            body.settings().material.viscosity);
-  if (const auto& ms = body.massScaling(); scene.massScaling > 0.0) {
-    log->info("mass scaling (run.mass_scaling = {}): {} of {} elements heavier, {:.4g} kg added ({:.3g} % of {:.4g} kg; "
-              "at most {:.3g} % of a body's own mass); the smallest element {:.4g} m acts as {:.4g} m ({:.3g} times; the "
-              "contact may hold the step shorter)",
-              scene.massScaling, ms.scaled, body.mesh().elementCount(), ms.addedMass, 100.0 * ms.addedMass / ms.mass,
-              ms.mass, 100.0 * ms.largestPartFraction, ms.lengthMin, ms.length, ms.length / ms.lengthMin);
-  }
-
+  logBody(log, body, scene);
   deformable::StressHistory history;
   std::vector<io::CollectionEntry> frames;
   if (o.restart) {

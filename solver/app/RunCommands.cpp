@@ -276,7 +276,7 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   if (c.applicationState != contactModel) {
     core::logger("run")->warn("{} was saved with '{}', this run uses '{}': its contacts (and their friction springs) "
                               "are not carried over, only the bodies' state",
-                              file, c.applicationState, contactModel);
+                              file, c.applicationState.substr(0, c.applicationState.find('\n')), contactModel);
     s.contacts.clear();
     s.manifoldCache.clear();
   }

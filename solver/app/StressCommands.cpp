@@ -203,7 +203,7 @@ Vec3 toWorld(const io::UnitLoadRecord& r, const Vec3& body) { return r.position 
 
 void writeUnitsCsv(const fs::path& path, const std::vector<UnitResult>& results, double strength) {
   core::writeFileAtomically(path, [&](std::ostream& out) {
-    out << "unit,name,records,max_body_sigma1_pa,time_s,x,y,z,body_x,body_y,body_z,event,max_sigma1_pa,"
+    out << "scene_body,name,records,max_body_sigma1_pa,time_s,x,y,z,body_x,body_y,body_z,event,max_sigma1_pa,"
            "time_sigma1_s,max_differential_pa,time_differential_s,over_strength\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
       const UnitResult& r = results[i];

@@ -13,7 +13,7 @@
 namespace armour::simulation {
 namespace {
 
-constexpr const char* kStateTag = "unit_loads 1";
+constexpr const char* kStateTag = "unit_loads 2";
 
 /// Index of the first record time after t (time = index x interval), as RunOutputs schedules.
 long nextIndexAfter(double t, double interval) { return static_cast<long>(std::floor(t / interval + 1e-9)) + 1; }
@@ -28,10 +28,10 @@ void put(std::ostream& out, const Vec3& v) {
 
 struct StateReader {
   std::istringstream in;
-  explicit StateReader(const std::string& text) : in(text) {}
-  [[noreturn]] static void fail(const std::string& what) {
-    core::failInput("checkpoint.nc (application_state)",
-                    "the unit-loads state is damaged ({}); start the run anew without --restart", what);
+  std::string where; ///< "<folder>/checkpoint.nc (application_state)"
+  StateReader(const std::string& text, std::string source) : in(text), where(std::move(source)) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    core::failInput(where, "the unit-loads state is damaged ({}); start the run anew without --restart", what);
   }
   std::string word() {
     std::string w;
@@ -81,6 +81,8 @@ UnitLoadsRecorder::UnitLoadsRecorder(World& world, UnitLoadsSettings settings, c
     dn_.push_back(u.dn);
   }
   world.setTracedBodies(settings_.bodies);
+  unitOfBody_.assign(world.bodies().size(), -1);
+  for (std::size_t i = 0; i < n; ++i) unitOfBody_[settings_.bodies[i]] = static_cast<std::int32_t>(i);
   wasAwake_.resize(world.bodies().size());
   for (BodyId b = 0; b < wasAwake_.size(); ++b) wasAwake_[b] = world.bodies().isAwake(b) ? 1 : 0;
   current_.assign(n, {});
@@ -88,7 +90,7 @@ UnitLoadsRecorder::UnitLoadsRecorder(World& world, UnitLoadsSettings settings, c
   holding_.assign(n, 0);
   std::optional<io::UnitLoadsRows> resume;
   if (!resumeState.empty()) {
-    parseState(resumeState);
+    parseState(resumeState, (folder / "checkpoint.nc").string() + " (application_state)");
     resume = scheduledRows_;
     resumedAtStep_ = world.stepCount();
   }
@@ -98,11 +100,9 @@ UnitLoadsRecorder::UnitLoadsRecorder(World& world, UnitLoadsSettings settings, c
 void UnitLoadsRecorder::mergeLoads(const World& world) {
   const auto& bodies = world.bodies();
   std::vector<std::vector<TracedContact>> next(current_.size());
-  // Units by World body (a few units: a linear search per contact is cheap and needs no map).
   for (const TracedContact& c : world.tracedContacts()) {
-    for (std::size_t i = 0; i < settings_.bodies.size(); ++i) {
-      if (settings_.bodies[i] == c.body) next[i].push_back(c);
-    }
+    if (c.body < unitOfBody_.size() && unitOfBody_[c.body] >= 0)
+      next[static_cast<std::size_t>(unitOfBody_[c.body])].push_back(c);
   }
   // Sleep changes at the end of a step: a body asleep at the last update was asleep through this
   // step's force evaluation. A unit asleep through it had its pairs with static geometry and with
@@ -129,7 +129,8 @@ io::UnitLoadRecord UnitLoadsRecorder::recordOf(const World& world, std::size_t u
   const Eigen::Matrix3d toBody = r.orientation.conjugate().toRotationMatrix();
   r.angularVelocity = toBody * bodies.worldAngularVelocity(b);
   // Clusters per other body, in the order met: each point joins the first cluster of its other
-  // body whose first point lies within the cluster width, else starts one.
+  // body whose first point lies within half the cluster width, else starts one (so no cluster is
+  // wider than the width).
   const double width = settings_.cluster * dn_[unit];
   struct Cluster {
     std::int64_t other;
@@ -143,7 +144,7 @@ io::UnitLoadRecord UnitLoadsRecorder::recordOf(const World& world, std::size_t u
     const Vec3 p = toBody * (c.point - r.position);
     Cluster* into = nullptr;
     for (Cluster& k : clusters) {
-      if (k.other == c.other && (k.first - p).norm() <= width) {
+      if (k.other == c.other && (k.first - p).norm() <= 0.5 * width) {
         into = &k;
         break;
       }
@@ -202,7 +203,11 @@ void UnitLoadsRecorder::finish() {
 
 std::string UnitLoadsRecorder::state() const {
   std::ostringstream out;
-  out << kStateTag << "\nunits " << settings_.bodies.size() << "\nnext " << nextRecord_ << "\nrows "
+  out << kStateTag << "\ninterval";
+  put(out, settings_.interval);
+  out << "\ncluster";
+  put(out, settings_.cluster);
+  out << "\nunits " << settings_.bodies.size() << "\nnext " << nextRecord_ << "\nrows "
       << scheduledRows_.records << ' ' << scheduledRows_.loads << '\n';
   for (std::size_t i = 0; i < settings_.bodies.size(); ++i) {
     out << "unit " << settings_.bodies[i] << " contacts " << current_[i].size();
@@ -234,17 +239,25 @@ std::string UnitLoadsRecorder::state() const {
   return out.str();
 }
 
-void UnitLoadsRecorder::parseState(const std::string& text) {
-  StateReader in(text);
+void UnitLoadsRecorder::parseState(const std::string& text, const std::string& where) {
+  StateReader in(text, where);
   std::string tag;
   std::getline(in.in, tag);
   if (tag != kStateTag)
-    StateReader::fail(fmt::format("it starts with '{}', not '{}'; a checkpoint of another armour version", tag, kStateTag));
+    in.fail(fmt::format("it starts with '{}', not '{}'; a checkpoint of another armour version", tag, kStateTag));
+  // The schedule and the clusters go on as they were: a restart may not change them.
+  in.expect("interval");
+  if (const double interval = in.number(); interval != settings_.interval)
+    core::failInput(where, "output.unit_loads_interval = {} s, but the checkpoint's run recorded every {} s; give {} "
+                           "to continue it, or start the run anew", settings_.interval, interval, interval);
+  in.expect("cluster");
+  if (const double cluster = in.number(); cluster != settings_.cluster)
+    core::failInput(where, "output.unit_loads_cluster = {}, but the checkpoint's run clustered at {} Dn; give {} to "
+                           "continue it, or start the run anew", settings_.cluster, cluster, cluster);
   in.expect("units");
   if (in.count() != settings_.bodies.size())
-    core::failInput("checkpoint.nc (application_state)",
-                    "the checkpoint's run recorded the loads of other units than output.unit_loads names now; give "
-                    "the same units, or start the run anew without --restart");
+    core::failInput(where, "the checkpoint's run recorded the loads of other units than output.unit_loads names now; "
+                           "give the same units, or start the run anew without --restart");
   in.expect("next");
   nextRecord_ = static_cast<long>(in.count());
   in.expect("rows");
@@ -253,9 +266,8 @@ void UnitLoadsRecorder::parseState(const std::string& text) {
   for (std::size_t i = 0; i < settings_.bodies.size(); ++i) {
     in.expect("unit");
     if (in.count() != settings_.bodies[i])
-      core::failInput("checkpoint.nc (application_state)",
-                      "unit {} of output.unit_loads is not the checkpoint's; give the same units, or start anew",
-                      i);
+      core::failInput(where, "body '{}' of output.unit_loads was not recorded by the checkpoint's run; give the same "
+                             "units, or start the run anew", settings_.names[settings_.bodies[i]]);
     in.expect("contacts");
     const std::size_t n = in.count();
     for (std::size_t k = 0; k < n; ++k) {
@@ -263,6 +275,8 @@ void UnitLoadsRecorder::parseState(const std::string& text) {
       TracedContact c;
       c.body = settings_.bodies[i];
       c.other = static_cast<std::int64_t>(in.number());
+      if (c.other < -1 || c.other >= static_cast<std::int64_t>(settings_.names.size()))
+        in.fail(fmt::format("a contact with body {}, of {} bodies", c.other, settings_.names.size()));
       c.point = in.vec();
       c.force = in.vec();
       c.normalForce = in.number();

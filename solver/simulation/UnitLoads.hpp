@@ -10,14 +10,16 @@
 /// a few milliseconds is caught whatever the interval. The first record (t = 0) is the initial
 /// state. The loads are the World's point forces on the unit (World::tracedContacts), merged per
 /// other body into clusters no wider than `cluster` x the unit's Dn (each the sum of its points'
-/// forces at their normal-force-weighted centre), in the unit's body frame.
+/// forces at their normal-force-weighted centre), in the unit's body frame. The final record of a
+/// run holds the window it ended in; its window_end is that window's scheduled end.
 ///
 /// Sleeping: the World does not examine pairs of which no body is awake, and their forces are
 /// those of the step they fell asleep in. The recorder keeps each unit's loads of the last step,
 /// and for a sleeping unit carries over those from static geometry and from sleeping bodies.
 ///
-/// Restart: the held peaks, the carried loads and the file rows go into the checkpoint as text
-/// (state(); hexadecimal doubles, bit for bit), so that a restarted run writes the same files.
+/// Restart: the interval and cluster width, the held peaks, the carried loads and the file rows go
+/// into the checkpoint as text (state(); hexadecimal doubles, bit for bit), so that a restarted run
+/// writes the same files; a restart with another interval or width is refused, naming the key.
 
 #include "io/UnitLoadsFile.hpp"
 #include "simulation/World.hpp"
@@ -61,7 +63,8 @@ private:
   /// The unit's loads now: fresh ones, and for a sleeper those carried over (see the file comment).
   void mergeLoads(const World& world);
   [[nodiscard]] io::UnitLoadRecord recordOf(const World& world, std::size_t unit) const;
-  void parseState(const std::string& text);
+  /// Restore state() text; `where` names the checkpoint in messages.
+  void parseState(const std::string& text, const std::string& where);
 
   UnitLoadsSettings settings_;
   std::vector<double> dn_;                    ///< per unit (unit: m)
@@ -72,6 +75,7 @@ private:
   std::vector<io::UnitLoadRecord> held_;      ///< per unit: the peak of the window in progress
   std::vector<std::uint8_t> holding_;         ///< per unit: held_ is set
   std::vector<std::uint8_t> wasAwake_;        ///< per World body: awake at the last update
+  std::vector<std::int32_t> unitOfBody_;      ///< per World body: its unit, -1 for none
   /// A resumed recorder: the checkpoint's step, already observed by the run that wrote it.
   std::optional<std::uint64_t> resumedAtStep_;
 };

@@ -382,6 +382,8 @@ private:
   // WorldContacts.cpp: boxes -> broad phase -> narrow phase -> contact law -> accumulate.
   struct PairWork;
   void computeForces(double dt, double stateTime);
+  /// The pair's resultant as a ContactPatch (settings.recordContacts).
+  void recordPatch(const PairWork& pw, std::int32_t points);
   void updateBoxes();
   /// The fdem narrow phase and law of one pair (WorldContacts.cpp): fills pw like the level-set path.
   void fdemPairForces(PairWork& pw, double dt) const;

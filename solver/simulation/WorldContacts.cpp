@@ -464,17 +464,7 @@ void World::computeForces(double dt, double stateTime) {
     stats_.contactPoints += pw.history.size();
     contactEnergy_ += pw.elasticEnergy;
     for (const auto& t : pw.traced) traceContact(pw.key, t.point, t.force, t.normalForce);
-    if (settings_.recordContacts && points > 0) {
-      ContactPatch patch;
-      patch.bodyA = a;
-      patch.bodyB = (pw.key.second & kStaticBits) == 0 ? static_cast<std::int64_t>(pw.key.second) : -1;
-      patch.force = pw.forceA;
-      patch.normalForce = pw.normalForce;
-      patch.points = points;
-      // A patch held only by friction and damping can have no normal force: plain mean then.
-      patch.point = pw.normalForce > 0.0 ? Vec3(pw.weightedPoint / pw.normalForce) : Vec3(pw.pointSum / points);
-      patches_.push_back(patch);
-    }
+    if (settings_.recordContacts && points > 0) recordPatch(pw, points);
     stats_.maxOverlap = std::max(stats_.maxOverlap, pw.maxOverlap);
     guardOverlap(pw.key, pw.maxOverlap, pw.fdemReach);
     if (!pw.history.empty()) {
@@ -485,6 +475,18 @@ void World::computeForces(double dt, double stateTime) {
   clock = profile_.add(Stage::Accumulate, clock);
   applyLoadStages(stateTime);
   profile_.add(Stage::Loads, clock);
+}
+
+void World::recordPatch(const PairWork& pw, std::int32_t points) {
+  ContactPatch patch;
+  patch.bodyA = pw.key.first;
+  patch.bodyB = (pw.key.second & kStaticBits) == 0 ? static_cast<std::int64_t>(pw.key.second) : -1;
+  patch.force = pw.forceA;
+  patch.normalForce = pw.normalForce;
+  patch.points = points;
+  // A patch held only by friction and damping can have no normal force: plain mean then.
+  patch.point = pw.normalForce > 0.0 ? Vec3(pw.weightedPoint / pw.normalForce) : Vec3(pw.pointSum / points);
+  patches_.push_back(patch);
 }
 
 void World::setTracedBodies(const std::vector<BodyId>& bodies) {

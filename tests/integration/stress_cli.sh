@@ -58,6 +58,9 @@ expect_refusal "--radius" "$armour" --log-level warn stress "$out/whole" --radiu
 head -n 20 "$out/split/unit_loads/records.csv" > "$out/cut.csv" && mv "$out/cut.csv" "$out/split/unit_loads/records.csv"
 expect_refusal "records.csv: holds 19 complete rows, but the checkpoint was taken after 375" \
   "$armour" --log-level warn run "$scene" -o "$out/split" --duration 1.6 "${sets[@]}" --restart
+# Another record interval at a restart: refused, naming the key and the checkpoint's value.
+expect_refusal "output.unit_loads_interval = 0.05 s, but the checkpoint's run recorded every 0.02 s" \
+  "$armour" --log-level warn run "$scene" -o "$out/whole" --duration 1.6 "${sets[@]}" --set output.unit_loads_interval=0.05 --restart
 # Unit loads turned on at a restart: refused (the sleeping units' loads are not in the checkpoint).
 expect_refusal "did not record unit loads" \
   "$armour" --log-level warn run "$scene" -o "$out/plain" --duration 0.1 "${sets[@]}" --restart
