@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 using namespace armour;
 namespace fs = std::filesystem;
@@ -159,6 +160,9 @@ TEST_P(BeamOnSupports, BendsAsEulerBernoulliAwakeAndAsleep) {
       largest = std::max(largest, expected);
       worst = std::max(worst, std::abs(sxx - expected));
     }
+    std::cout << GetParam() << ", record at t = " << r.time << ": net force " << f.transpose() << " N (weight " << weight
+              << "), moment " << netMoment(r).transpose() << " N m; sigma_xx within " << worst << " Pa of Euler-Bernoulli ("
+              << 100.0 * worst / largest << " % of the largest, " << largest << " Pa)\n";
     EXPECT_GT(largest, 0.7 * q * 0.25 / I) << "the lowest centroids lie about 0.02 m above the face";
     EXPECT_LT(worst, 0.05 * largest) << "record at t = " << r.time << ": largest bending stress " << largest << " Pa";
   }
