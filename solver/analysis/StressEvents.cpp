@@ -2,7 +2,6 @@
 #include "analysis/StressEvents.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 namespace armour::analysis {
@@ -14,9 +13,7 @@ std::string eventKind(const std::vector<StressSample>& samples, std::size_t i, c
   for (std::size_t k = i; k-- > 0 && samples[k].time >= samples[i].time - settings.lookBack;) {
     lowest = std::min(lowest, samples[k].contactForce);
     spin = std::max(spin, samples[k].angularSpeed);
-    double d2 = 0.0;
-    for (int j = 0; j < 3; ++j) d2 += (samples[i].position[j] - samples[k].position[j]) * (samples[i].position[j] - samples[k].position[j]);
-    travel = std::max(travel, std::sqrt(d2));
+    travel = std::max(travel, (samples[i].position - samples[k].position).norm());
   }
   if (!(samples[i].contactForce > settings.impactRise * lowest)) return "sustained";
   return spin > settings.rockingSpin && travel < settings.rockingTravel ? "rocking" : "impact";

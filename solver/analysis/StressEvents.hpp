@@ -14,6 +14,8 @@
 ///  - "sustained": no such rise: the pack's weight and the wave's slow push.
 /// Every threshold is ours (docs/theory.md says why).
 
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -29,7 +31,7 @@ struct StressSample {
   double contactForce = 0.0;     ///< sum of the contact point forces' magnitudes (unit: N)
   double speed = 0.0;            ///< of the centre of mass (unit: m/s)
   double angularSpeed = 0.0;     ///< (unit: rad/s)
-  double position[3] = {0.0, 0.0, 0.0}; ///< of the centre of mass, world (unit: m)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero(); ///< of the centre of mass, world (unit: m)
   std::string dominant;          ///< the other body of the largest contact load ("static", "" if none)
   double dominantForce = 0.0;    ///< its magnitude (unit: N)
 };

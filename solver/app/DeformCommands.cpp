@@ -15,7 +15,6 @@
 #include "deformable/StructuredBox.hpp"
 #include "geometry/MassProperties.hpp"
 #include "geometry/MeshFile.hpp"
-#include "geometry/MeshValidation.hpp"
 #include "geometry/ShapeLibrary.hpp"
 #include "geometry/Tetrahedralizer.hpp"
 #include "io/DeformableScene.hpp"
@@ -45,16 +44,21 @@ struct DeformRequest {
   bool durationGiven = false;
 };
 
+/// A library shape of a part at its volume, seed and parameters, centred on its centroid.
+geometry::TriangleMesh librarySurface(const io::DeformablePart& p) {
+  geometry::ShapeRequest request;
+  request.volume = p.volume;
+  request.seed = p.shapeSeed;
+  request.params = p.params;
+  return geometry::makeShape(p.shape, request);
+}
+
 /// One part's tets in its own frame: a library shape meshed by gmsh (centred on its centroid), or
 /// a box of Kuhn cells (centred on its centre).
 geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string& source) {
   geometry::TetMesh mesh;
   if (!p.meshFile.empty()) {
-    geometry::TriangleMesh surface = geometry::readMesh(p.meshFile);
-    const geometry::RepairReport repair = geometry::validateMesh(surface, p.meshFile.string());
-    if (repair.flippedFaces > 0 || repair.inverted)
-      core::logger("deform")->warn("{}: orientation repaired ({} faces flipped{})", p.meshFile.string(),
-                                   repair.flippedFaces, repair.inverted ? ", mesh turned outward" : "");
+    geometry::TriangleMesh surface = geometry::readValidMesh(p.meshFile, "deform");
     const geometry::MassProperties mp = geometry::computeMassProperties(surface);
     const double scale = p.volume > 0.0 ? std::cbrt(p.volume / mp.volume) : 1.0;
     for (auto& v : surface.vertices) v = scale * (v - mp.centroid); // centred on its centroid, as a library shape
@@ -64,15 +68,11 @@ geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string&
     options.source = fmt::format("{}: bodies '{}' ({})", source, p.name, p.meshFile.string());
     mesh = geometry::tetrahedralize(surface, options);
   } else if (!p.shape.empty()) {
-    geometry::ShapeRequest request;
-    request.volume = p.volume;
-    request.seed = p.shapeSeed;
-    request.params = p.params;
     geometry::TetrahedralizeOptions options;
     options.targetTetCount = p.tets;
     options.keepSurface = false;
     options.source = fmt::format("{}: bodies '{}'", source, p.name);
-    mesh = geometry::tetrahedralize(geometry::makeShape(p.shape, request), options); // centred on the centroid
+    mesh = geometry::tetrahedralize(librarySurface(p), options);
   } else {
     mesh = deformable::structuredBox(p.box, static_cast<int>(p.cells[0]), static_cast<int>(p.cells[1]),
                                      static_cast<int>(p.cells[2]));
@@ -127,14 +127,10 @@ std::vector<deformable::RigidObstacle> rigidObstacles(const io::DeformableScene&
                                                       const std::shared_ptr<spdlog::logger>& log) {
   std::vector<deformable::RigidObstacle> out;
   for (const io::RigidPart& r : scene.rigidBodies) {
-    geometry::ShapeRequest request;
-    request.volume = r.part.volume;
-    request.seed = r.part.shapeSeed;
-    request.params = r.part.params;
     contact::LevelSetSettings settings;
     settings.cellsPerDn = r.cellsPerDn;
     const std::string source = fmt::format("{}: rigid_bodies '{}'", scene.file.string(), r.part.name);
-    levelSets.push_back(std::make_unique<contact::LevelSet>(geometry::makeShape(r.part.shape, request), settings, source));
+    levelSets.push_back(std::make_unique<contact::LevelSet>(librarySurface(r.part), settings, source));
     deformable::RigidObstacle o;
     o.levelSet = levelSets.back().get();
     o.position = r.part.position;

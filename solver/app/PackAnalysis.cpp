@@ -3,6 +3,7 @@
 
 #include "analysis/UnderlayerSurface.hpp"
 #include "core/AtomicFile.hpp"
+#include "core/CsvText.hpp"
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "simulation/SceneBuilder.hpp"
@@ -22,21 +23,6 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("NaN"); }
 std::string json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out;
-  std::string field;
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) {
-      out.push_back(field);
-      field.clear();
-    } else if (c != '\r') field += c;
-  }
-  out.push_back(field);
-  return out;
-}
 
 /// The slope-normal height (frame coordinates, m) of a body's highest point: its mesh (principal
 /// frame at scale 1) scaled and placed at the body's pose.
@@ -91,7 +77,7 @@ PoseMap readPoses(const std::filesystem::path& path) {
   if (!in) core::failInput(path.string(), "cannot open the state file; give a run's final_state.csv or a scene file");
   std::string line;
   if (!std::getline(in, line)) core::failInput(path.string(), "empty state file");
-  const auto header = splitCsv(line);
+  const auto header = core::splitCsvLine(line);
   std::map<std::string, std::size_t> col;
   for (std::size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
   for (const char* key : {"name", "x", "y", "z", "qw", "qx", "qy", "qz"})
@@ -102,7 +88,7 @@ PoseMap readPoses(const std::filesystem::path& path) {
   while (std::getline(in, line)) {
     ++lineNo;
     if (line.empty()) continue;
-    const auto f = splitCsv(line);
+    const auto f = core::splitCsvLine(line);
     const auto value = [&](const char* key) {
       const std::size_t i = col[key];
       try {
@@ -119,7 +105,6 @@ PoseMap readPoses(const std::filesystem::path& path) {
     p.position = {value("x"), value("y"), value("z")};
     p.orientation = Eigen::Quaterniond(value("qw"), value("qx"), value("qy"), value("qz")).normalized();
     std::string name = f[col["name"]];
-    if (name.size() >= 2 && name.front() == '"') name = name.substr(1, name.size() - 2);
     poses[name] = p;
   }
   return poses;

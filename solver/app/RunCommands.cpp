@@ -4,6 +4,7 @@
 #include "app/StopSignals.hpp"
 
 #include "core/AtomicFile.hpp"
+#include "core/CsvText.hpp"
 #include "core/BuildInfo.hpp"
 #include "core/Error.hpp"
 #include "core/Log.hpp"
@@ -95,17 +96,6 @@ void logLines(const std::shared_ptr<spdlog::logger>& log, const std::string& tex
   }
 }
 
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) {
-    return text;
-  }
-  std::string quoted = "\"";
-  for (char c : text) {
-    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  }
-  return quoted + "\"";
-}
-
 /// One row per scene body: index, name, centroid, orientation of the body's natural shape frame
 /// (as the scene gives it), velocity. Full double precision so a state can be compared or reused.
 void writeStateCsv(const fs::path& path, const io::Scene& scene, const simulation::BuiltScene& built) {
@@ -118,7 +108,7 @@ void writeStateCsv(const fs::path& path, const io::Scene& scene, const simulatio
       const auto q = world.naturalOrientation(b);
       const auto& v = world.bodies().velocity(b);
       out << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", i,
-                         csvField(scene.bodies[i].name), x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(),
+                         core::csvField(scene.bodies[i].name), x.x(), x.y(), x.z(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(),
                          v.z());
     }
   });
@@ -440,8 +430,9 @@ void runScene(const RunRequest& o) {
     if (!restart) {
       world.evaluateContacts();
     }
+    // The outputs of the start (a restart's were written before its checkpoint, at this step).
+    if (!restart) outputs.update(world);
     // Same end test as World::advanceTo: the last step lands within half a step of the end.
-    outputs.update(world);
     while (world.time() < end - 0.5 * dt) {
       world.step();
       outputs.update(world);

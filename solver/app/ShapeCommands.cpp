@@ -159,17 +159,6 @@ struct MeshToolOptions {
   bool uniform = false;   ///< refine the surface to the interior size first
 };
 
-/// Read a mesh file and validate it (orientation repaired where unambiguous, logged).
-TriangleMesh readValidMesh(const std::string& path) {
-  TriangleMesh mesh = readMesh(path);
-  const RepairReport repair = validateMesh(mesh, path);
-  if (repair.flippedFaces > 0 || repair.inverted) {
-    core::logger("geometry")->warn("{}: orientation repaired ({} faces flipped{})", path, repair.flippedFaces,
-                                   repair.inverted ? ", mesh turned outward" : "");
-  }
-  return mesh;
-}
-
 void refineFile(const MeshToolOptions& o) {
   if (!(o.maxEdge > 0.0)) {
     core::failInput("--max-edge", "{} m: give the largest edge length wanted, a positive size in metres", o.maxEdge);

@@ -4,6 +4,7 @@
 #include "analysis/StressEvents.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/BuildInfo.hpp"
+#include "core/CsvText.hpp"
 #include "core/Error.hpp"
 #include "core/JsonWriter.hpp"
 #include "core/Log.hpp"
@@ -17,7 +18,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cctype>
 #include <cmath>
 #include <memory>
 
@@ -114,7 +114,7 @@ analysis::StressSample sampleOf(const io::UnitLoadRecord& r, const deformable::U
   out.contactForce = r.contactForce;
   out.speed = r.velocity.norm();
   out.angularSpeed = r.angularVelocity.norm();
-  for (int j = 0; j < 3; ++j) out.position[j] = r.position[j];
+  out.position = r.position;
   for (const io::UnitLoad& l : r.loads) {
     if (l.force.norm() > out.dominantForce) {
       out.dominantForce = l.force.norm();
@@ -130,13 +130,6 @@ deformable::UnitLoadCase caseOf(const io::UnitLoadRecord& r) {
   c.angularVelocity = r.angularVelocity;
   for (const io::UnitLoad& l : r.loads) c.loads.push_back({l.point, l.force});
   return c;
-}
-
-/// A file name for a unit: characters other than [A-Za-z0-9_.-] as '_'.
-std::string fileNameOf(const std::string& name) {
-  std::string s;
-  for (char ch : name) s += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.') ? ch : '_';
-  return s;
 }
 
 UnitResult analyseUnit(const io::UnitLoads& loads, std::size_t unit, const StressRequest& o, const fs::path& out,
@@ -187,7 +180,7 @@ UnitResult analyseUnit(const io::UnitLoads& loads, std::size_t unit, const Stres
   const std::size_t worst = static_cast<std::size_t>(
       std::max_element(res.stress.begin(), res.stress.end(),
                        [](const auto& a, const auto& b) { return a.sigma1Away < b.sigma1Away; }) - res.stress.begin());
-  model.writeVtu(caseOf(*res.records[worst]), out / (fileNameOf(u.name) + "-peak.vtu"));
+  model.writeVtu(caseOf(*res.records[worst]), out / (core::fileSafeName(u.name) + "-peak.vtu"));
   analysis::StressEventSettings events;
   events.rockingTravel = kRockingTravel * u.dn;
   res.summary = analysis::summarizeUnitStress(res.samples, events);

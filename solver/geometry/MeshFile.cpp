@@ -2,6 +2,8 @@
 #include "geometry/MeshFile.hpp"
 
 #include "core/Error.hpp"
+#include "core/Log.hpp"
+#include "geometry/MeshValidation.hpp"
 #include "geometry/ObjFile.hpp"
 #include "geometry/StlFile.hpp"
 #include "geometry/VtpFile.hpp"
@@ -59,6 +61,16 @@ void writeMesh(const TriangleMesh& mesh, const std::filesystem::path& path, Mesh
   case MeshFormat::Obj: writeObj(mesh, path); break;
   case MeshFormat::Vtp: writeVtp(mesh, path); break;
   }
+}
+
+TriangleMesh readValidMesh(const std::filesystem::path& path, const std::string& logModule) {
+  TriangleMesh mesh = readMesh(path);
+  const RepairReport repair = validateMesh(mesh, path.string());
+  if (repair.flippedFaces > 0 || repair.inverted) {
+    core::logger(logModule)->warn("{}: orientation repaired ({} faces flipped{})", path.string(), repair.flippedFaces,
+                                  repair.inverted ? ", mesh turned outward" : "");
+  }
+  return mesh;
 }
 
 } // namespace armour::geometry

@@ -22,6 +22,11 @@ MeshFormat meshFormatFromPath(const std::filesystem::path& path);
 /// Read a surface mesh; the format comes from the extension (STL: ASCII or binary detected).
 TriangleMesh readMesh(const std::filesystem::path& path);
 
+/// readMesh, then validateMesh (geometry/MeshValidation.hpp): throws core::InputError naming the
+/// file and the defect; an orientation it repaired is logged as a warning by the `logModule`
+/// logger ("geometry", "scene", "deform").
+TriangleMesh readValidMesh(const std::filesystem::path& path, const std::string& logModule = "geometry");
+
 /// Write a surface mesh atomically in the given format.
 void writeMesh(const TriangleMesh& mesh, const std::filesystem::path& path, MeshFormat format);
 

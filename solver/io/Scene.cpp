@@ -305,7 +305,8 @@ std::string describeScene(const Scene& s) {
   return out;
 }
 
-std::vector<std::size_t> unitLoadBodies(const Scene& scene) {
+UnitLoadSelection selectUnitLoadBodies(const Scene& scene) {
+  UnitLoadSelection out;
   std::vector<std::uint8_t> chosen(scene.bodies.size(), 0);
   for (const std::string& entry : scene.output.unitLoads) {
     const bool prefix = !entry.empty() && entry.back() == '*';
@@ -316,21 +317,28 @@ std::vector<std::size_t> unitLoadBodies(const Scene& scene) {
       if (prefix ? !b.name.starts_with(stem) : b.name != stem) continue;
       if (b.fixed) {
         if (prefix) continue; // a prefix may cover fixed bodies too: they carry no loads of their own
-        core::failInput(scene.sourceName, "output.unit_loads: body '{}' is fixed: it never moves, and its loads are "
-                                          "not traced; name dynamic bodies", entry);
+        out.problem = fmt::format("body '{}' is fixed: it never moves, and its loads are not traced; name dynamic "
+                                  "bodies", entry);
+        return out;
       }
       chosen[i] = 1;
       ++found;
     }
-    if (found == 0)
-      core::failInput(scene.sourceName, "output.unit_loads: '{}' names no {}body of the scene; give body names, or a "
-                                        "prefix ending in '*' such as 'unit_*'",
-                      entry, prefix ? "dynamic " : "");
+    if (found == 0) {
+      out.problem = fmt::format("'{}' names no {}body of the scene; give body names, or a prefix ending in '*' such as "
+                                "'unit_*'", entry, prefix ? "dynamic " : "");
+      return out;
+    }
   }
-  std::vector<std::size_t> out;
   for (std::size_t i = 0; i < chosen.size(); ++i)
-    if (chosen[i] != 0) out.push_back(i);
+    if (chosen[i] != 0) out.bodies.push_back(i);
   return out;
+}
+
+std::vector<std::size_t> unitLoadBodies(const Scene& scene) {
+  UnitLoadSelection s = selectUnitLoadBodies(scene);
+  if (!s.problem.empty()) core::failInput(scene.sourceName, "output.unit_loads: {}", s.problem);
+  return std::move(s.bodies);
 }
 
 } // namespace armour::io

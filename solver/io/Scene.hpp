@@ -327,8 +327,15 @@ std::string describeScene(const Scene& scene);
 /// line: a state saved under other settings does not fit the contacts of these.
 std::string describeContactModel(const ContactSettings& contact);
 
-/// The scene bodies `output.unit_loads` names, in scene order. Throws core::InputError naming the
-/// scene file, the key and the entry when an entry names no body or a fixed one.
+/// The scene bodies `output.unit_loads` names, in scene order, or why they cannot be traced.
+struct UnitLoadSelection {
+  std::vector<std::size_t> bodies;
+  std::string problem; ///< "" or what is wrong with an entry (a name of no body, a fixed body), with the fix
+};
+[[nodiscard]] UnitLoadSelection selectUnitLoadBodies(const Scene& scene);
+
+/// selectUnitLoadBodies' bodies; throws core::InputError naming the scene file, the key and the
+/// problem.
 std::vector<std::size_t> unitLoadBodies(const Scene& scene);
 
 } // namespace armour::io

@@ -858,15 +858,8 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   detail::readPlacement(top, scene);
   // Unit names are checked here when the bodies are given; a placement scene's come with `armour place`.
   if (!top.has("placement") && !scene.output.unitLoads.empty()) {
-    try {
-      (void)unitLoadBodies(scene);
-    } catch (const core::InputError& e) {
-      const Block o(ctx, top.get("output"), "output", kOutputKeys);
-      const std::string message = e.what();
-      const std::string key = "output.unit_loads: ";
-      const auto at = message.find(key);
-      o.failValue("unit_loads", at == std::string::npos ? message : message.substr(at + key.size()));
-    }
+    if (const UnitLoadSelection units = selectUnitLoadBodies(scene); !units.problem.empty())
+      Block(ctx, top.get("output"), "output", kOutputKeys).failValue("unit_loads", units.problem);
   }
 
   const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });

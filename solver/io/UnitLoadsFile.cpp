@@ -2,12 +2,12 @@
 #include "io/UnitLoadsFile.hpp"
 
 #include "core/AtomicFile.hpp"
+#include "core/CsvText.hpp"
 #include "core/Error.hpp"
 #include "geometry/MeshFile.hpp"
 
 #include <fmt/format.h>
 
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -23,39 +23,9 @@ constexpr const char* kRecordsHeader =
     "record,unit,time,window_end,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,contact_force,loads";
 constexpr const char* kLoadsHeader = "record,unit,other,px,py,pz,fx,fy,fz";
 
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (c == '"') {
-      if (quoted && i + 1 < line.size() && line[i + 1] == '"') {
-        out.back() += '"';
-        ++i;
-      } else {
-        quoted = !quoted;
-      }
-    } else if (c == ',' && !quoted) {
-      out.emplace_back();
-    } else if (c != '\r') {
-      out.back() += c;
-    }
-  }
-  return out;
-}
-
-/// A file name for a unit's surface: the name with characters other than [A-Za-z0-9_.-] as '_'.
-std::string surfaceFileName(const std::string& name, std::size_t index) {
-  std::string s;
-  for (char c : name) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ? c : '_';
-  return fmt::format("{}-{}.vtp", index, s);
+/// A unit's surface file: "<index>-<name>.vtp".
+std::string surfaceFileName(const UnitLoadsUnit& unit, std::size_t index) {
+  return std::to_string(index) + "-" + core::fileSafeName(unit.name) + ".vtp";
 }
 
 /// Keep the header and the first `rows` complete lines of `path` (rewritten atomically).
@@ -95,12 +65,12 @@ UnitLoadsWriter::UnitLoadsWriter(const fs::path& folder, const std::vector<UnitL
     out << kUnitsHeader << '\n';
     for (std::size_t i = 0; i < units.size(); ++i) {
       const UnitLoadsUnit& u = units[i];
-      out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{}\n", i, csvField(u.name), u.sceneBody, u.mass, u.volume,
-                         u.dn, surfaceFileName(u.name, i));
+      out << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{}\n", i, core::csvField(u.name), u.sceneBody, u.mass, u.volume,
+                         u.dn, surfaceFileName(u, i));
     }
   });
   for (std::size_t i = 0; i < units.size(); ++i) {
-    geometry::writeMesh(units[i].surface, folder_ / surfaceFileName(units[i].name, i), geometry::MeshFormat::Vtp);
+    geometry::writeMesh(units[i].surface, folder_ / surfaceFileName(units[i], i), geometry::MeshFormat::Vtp);
   }
   if (resume) {
     truncateRows(folder_ / "records.csv", kRecordsHeader, resume->records);
@@ -125,7 +95,7 @@ void UnitLoadsWriter::append(const std::vector<UnitLoadRecord>& records) {
                        q.y(), q.z(), r.velocity.x(), r.velocity.y(), r.velocity.z(), r.angularVelocity.x(),
                        r.angularVelocity.y(), r.angularVelocity.z(), r.contactForce, r.loads.size());
     for (const UnitLoad& l : r.loads) {
-      loads += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", id, r.unit, csvField(l.other),
+      loads += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", id, r.unit, core::csvField(l.other),
                            l.point.x(), l.point.y(), l.point.z(), l.force.x(), l.force.y(), l.force.z());
       ++rows_.loads;
     }
@@ -162,11 +132,11 @@ struct CsvFile {
     std::string line;
     if (!std::getline(in, line) || line != header)
       core::failInput(p.string(), "not a unit-loads file of armour: the header should be '{}'", header);
-    columns = splitCsv(line);
+    columns = core::splitCsvLine(line);
     while (std::getline(in, line)) {
       if (in.eof() && !line.empty()) break; // a last line without newline: a run killed while writing
       if (line.empty()) continue;
-      rows.push_back(splitCsv(line));
+      rows.push_back(core::splitCsvLine(line));
       if (rows.back().size() != columns.size())
         core::failInput(fmt::format("{}:{}", p.string(), rows.size() + 1), "{} columns, expected {}; the file is damaged",
                         rows.back().size(), columns.size());

@@ -69,7 +69,9 @@ public:
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
 
-  /// Write whatever is due at the world's current time (always at t = 0 on the first call).
+  /// Write whatever is due at the world's current time (always at t = 0 on the first call). Called
+  /// after every step, and before the first of a new run, not of a restart: the run that wrote
+  /// the checkpoint had written everything due at its step.
   void update(const World& world);
   /// Write the final state if it was not just written, and close the files.
   void finish(const World& world);

@@ -140,13 +140,7 @@ geometry::TriangleMesh shapeMesh(const io::ShapeSpec& spec) {
     request.seed = spec.seed;
     return geometry::makeShape(spec.generator, request);
   }
-  geometry::TriangleMesh mesh = geometry::readMesh(spec.meshFile);
-  const geometry::RepairReport repair = geometry::validateMesh(mesh, spec.meshFile.string());
-  if (repair.flippedFaces > 0 || repair.inverted) {
-    core::logger("scene")->warn("{}: orientation repaired ({} faces flipped{})", spec.meshFile.string(),
-                                repair.flippedFaces, repair.inverted ? ", mesh turned outward" : "");
-  }
-  return mesh;
+  return geometry::readValidMesh(spec.meshFile, "scene");
 }
 
 WorldSettings worldSettings(const io::Scene& scene) {

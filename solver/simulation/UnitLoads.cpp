@@ -92,7 +92,6 @@ UnitLoadsRecorder::UnitLoadsRecorder(World& world, UnitLoadsSettings settings, c
   if (!resumeState.empty()) {
     parseState(resumeState, (folder / "checkpoint.nc").string() + " (application_state)");
     resume = scheduledRows_;
-    resumedAtStep_ = world.stepCount();
   }
   writer_ = std::make_unique<io::UnitLoadsWriter>(folder, units, resume);
 }
@@ -171,8 +170,6 @@ io::UnitLoadRecord UnitLoadsRecorder::recordOf(const World& world, std::size_t u
 }
 
 void UnitLoadsRecorder::update(const World& world) {
-  if (resumedAtStep_ && *resumedAtStep_ == world.stepCount()) return; // observed before the checkpoint
-  resumedAtStep_.reset();
   mergeLoads(world);
   const double t = world.time();
   for (std::size_t i = 0; i < current_.size(); ++i) {

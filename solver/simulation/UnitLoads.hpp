@@ -27,7 +27,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,7 +48,8 @@ public:
   UnitLoadsRecorder(World& world, UnitLoadsSettings settings, const std::filesystem::path& folder,
                     const std::string& resumeState = {});
 
-  /// After every step (and once before the first): hold the peaks, write the records due.
+  /// After every step (and once before the first of a new run; a resumed run's recorder saw the
+  /// checkpoint's step before it was taken): hold the peaks, write the records due.
   void update(const World& world);
   /// Write the held records of the window in progress (the end of a run; a restart drops them).
   void finish();
@@ -76,8 +76,6 @@ private:
   std::vector<std::uint8_t> holding_;         ///< per unit: held_ is set
   std::vector<std::uint8_t> wasAwake_;        ///< per World body: awake at the last update
   std::vector<std::int32_t> unitOfBody_;      ///< per World body: its unit, -1 for none
-  /// A resumed recorder: the checkpoint's step, already observed by the run that wrote it.
-  std::optional<std::uint64_t> resumedAtStep_;
 };
 
 } // namespace armour::simulation

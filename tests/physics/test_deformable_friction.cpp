@@ -33,18 +33,6 @@ DeformableSettings inclineSettings(double thetaDeg, double mu) {
   return s;
 }
 
-/// Mass-weighted mean velocity and position of the body's nodes.
-std::pair<Vec3, Vec3> centroidMotion(const DeformableBody& body) {
-  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
-  double m = 0.0;
-  for (std::size_t n = 0; n < body.nodeCount(); ++n) {
-    x += body.masses()[n] * body.positions()[n];
-    v += body.masses()[n] * body.velocities()[n];
-    m += body.masses()[n];
-  }
-  return {x / m, v / m};
-}
-
 class DeformableFriction : public ::testing::TestWithParam<ElementOrder> {};
 
 TEST_P(DeformableFriction, BlockBelowTheFrictionAngleDoesNotCreep) {
@@ -57,9 +45,9 @@ TEST_P(DeformableFriction, BlockBelowTheFrictionAngleDoesNotCreep) {
   DeformableBody body(mesh, settings, "block on an incline");
   const double dt = body.stableStep().dt;
   while (body.time() < 0.05) body.step(dt);
-  const Vec3 x0 = centroidMotion(body).first;
+  const Vec3 x0 = test::centroidMotion(body).first;
   while (body.time() < 0.3) body.step(dt);
-  const Vec3 x1 = centroidMotion(body).first;
+  const Vec3 x1 = test::centroidMotion(body).first;
   const double weight = settings.material.density * kG;
   const double downSlope = weight * std::sin(20.0 * std::numbers::pi / 180.0);
   std::cout << "tet" << mesh.nodesPerElement() << ", theta 20 deg, mu 0.6: " << body.steps() << " steps of " << dt
@@ -80,10 +68,10 @@ TEST_P(DeformableFriction, BlockAboveTheFrictionAngleSlidesAtGSinMinusMuCos) {
   DeformableBody body(mesh, inclineSettings(20.0, mu), "block on an incline");
   const double dt = body.stableStep().dt;
   while (body.time() < 0.05) body.step(dt);
-  const auto [x1, v1] = centroidMotion(body);
+  const auto [x1, v1] = test::centroidMotion(body);
   const double t1 = body.time();
   while (body.time() < 0.25) body.step(dt);
-  const auto [x2, v2] = centroidMotion(body);
+  const auto [x2, v2] = test::centroidMotion(body);
   const double acceleration = (v2.x() - v1.x()) / (body.time() - t1);
   const double expected = kG * (std::sin(theta) - mu * std::cos(theta));
   std::cout << "tet" << mesh.nodesPerElement() << ", theta 20 deg, mu 0.2: acceleration " << acceleration

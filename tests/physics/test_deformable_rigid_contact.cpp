@@ -154,18 +154,6 @@ TEST(DeformableRigidContact, ARisingSlabLiftsTheBlock) {
   EXPECT_NEAR(push, expected, 0.02 * expected);
 }
 
-/// Mass-weighted mean position and velocity of the body's nodes.
-std::pair<Vec3, Vec3> centroidMotion(const DeformableBody& body) {
-  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
-  double m = 0.0;
-  for (std::size_t n = 0; n < body.nodeCount(); ++n) {
-    x += body.masses()[n] * body.positions()[n];
-    v += body.masses()[n] * body.velocities()[n];
-    m += body.masses()[n];
-  }
-  return {x / m, v / m};
-}
-
 /// A 1 m tet10 block (one Kuhn cell) on the slab with friction mu, gravity tilted by theta about y
 /// (down-slope +x), viscosity 5 % of critical: the half-space friction test's block
 /// (test_deformable_friction.cpp) on a rigid body instead.
@@ -187,9 +175,9 @@ TEST(DeformableRigidContact, FrictionOnARigidSlabHoldsBelowTheFrictionAngle) {
   body.setObstacles({slab.at()});
   const double dt = body.stableStep().dt;
   while (body.time() < 0.05) body.step(dt);
-  const Vec3 x0 = centroidMotion(body).first;
+  const Vec3 x0 = test::centroidMotion(body).first;
   while (body.time() < 0.3) body.step(dt);
-  const Vec3 x1 = centroidMotion(body).first;
+  const Vec3 x1 = test::centroidMotion(body).first;
   const double downSlope = body.settings().material.density * 9.81 * std::sin(20.0 * std::numbers::pi / 180.0);
   const Vec3 f = body.obstacleLoads().front().force;
   std::cout << "friction on a rigid slab, 20 deg, mu 0.6: drift " << (x1 - x0).transpose() << " m; the slab takes "
@@ -205,10 +193,10 @@ TEST(DeformableRigidContact, FrictionOnARigidSlabSlidesAtGSinMinusMuCos) {
   body.setObstacles({slab.at()});
   const double dt = body.stableStep().dt;
   while (body.time() < 0.05) body.step(dt);
-  const Vec3 v1 = centroidMotion(body).second;
+  const Vec3 v1 = test::centroidMotion(body).second;
   const double t1 = body.time();
   while (body.time() < 0.25) body.step(dt);
-  const Vec3 v2 = centroidMotion(body).second;
+  const Vec3 v2 = test::centroidMotion(body).second;
   const double theta = 20.0 * std::numbers::pi / 180.0;
   const double expected = 9.81 * (std::sin(theta) - 0.2 * std::cos(theta));
   const double a = (v2.x() - v1.x()) / (body.time() - t1);
@@ -229,7 +217,7 @@ TEST(DeformableRigidContact, AMovingSlabCarriesTheBlockByFriction) {
     body.setObstacles({slab.at(Vec3(kSpeed * (body.time() + dt), 0.0, 0.0))});
     body.step(dt);
   }
-  const Vec3 v = centroidMotion(body).second;
+  const Vec3 v = test::centroidMotion(body).second;
   std::cout << "block on a moving slab: velocity " << v.transpose() << " m/s (the slab's " << kSpeed << ")\n";
   EXPECT_NEAR(v.x(), kSpeed, 0.01 * kSpeed);
 }

@@ -223,7 +223,7 @@ TEST(StressEvents, KindsFollowTheContactForceAndTheUnitsOwnMotion) {
   s[10].contactForce = 5e4, s[10].sigma1Away = 9e5;             // a blow on a unit at rest
   for (std::size_t i = 20; i <= 25; ++i) s[i].angularSpeed = 0.3; // rocking in place
   s[25].contactForce = 4e4, s[25].sigma1Away = 8e5;
-  for (std::size_t i = 30; i <= 35; ++i) s[i].position[0] = 0.5 * static_cast<double>(i - 30); // falls into it
+  for (std::size_t i = 30; i <= 35; ++i) s[i].position.x() = 0.5 * static_cast<double>(i - 30); // falls into it
   for (std::size_t i = 30; i <= 35; ++i) s[i].angularSpeed = 0.3;
   s[35].contactForce = 4e4, s[35].sigma1Away = 7e5;
   const auto summary = analysis::summarizeUnitStress(s);

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace armour::deformable::test {
@@ -77,6 +78,18 @@ inline double highestFrequencyByPowerIteration(const Eigen::SparseMatrix<double>
     x = y;
   }
   return std::sqrt(lambda);
+}
+
+/// The mass-weighted mean position and velocity of a body's nodes: its centroid's motion.
+inline std::pair<Vec3, Vec3> centroidMotion(const DeformableBody& body) {
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t n = 0; n < body.nodeCount(); ++n) {
+    x += body.masses()[n] * body.positions()[n];
+    v += body.masses()[n] * body.velocities()[n];
+    m += body.masses()[n];
+  }
+  return {x / m, v / m};
 }
 
 } // namespace armour::deformable::test
