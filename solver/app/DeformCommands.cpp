@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/DeformCommands.hpp"
 
+#include "app/DeformRigidPack.hpp"
+
 #include "app/StopSignals.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/BuildInfo.hpp"
@@ -44,15 +46,6 @@ struct DeformRequest {
   bool durationGiven = false;
 };
 
-/// A library shape of a part at its volume, seed and parameters, centred on its centroid.
-geometry::TriangleMesh librarySurface(const io::DeformablePart& p) {
-  geometry::ShapeRequest request;
-  request.volume = p.volume;
-  request.seed = p.shapeSeed;
-  request.params = p.params;
-  return geometry::makeShape(p.shape, request);
-}
-
 /// One part's tets in its own frame: a library shape meshed by gmsh (centred on its centroid), or
 /// a box of Kuhn cells (centred on its centre).
 geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string& source) {
@@ -72,7 +65,7 @@ geometry::TetMesh meshInOwnFrame(const io::DeformablePart& p, const std::string&
     options.targetTetCount = p.tets;
     options.keepSurface = false;
     options.source = fmt::format("{}: bodies '{}'", source, p.name);
-    mesh = geometry::tetrahedralize(librarySurface(p), options);
+    mesh = geometry::tetrahedralize(io::librarySurface(p), options);
   } else {
     mesh = deformable::structuredBox(p.box, static_cast<int>(p.cells[0]), static_cast<int>(p.cells[1]),
                                      static_cast<int>(p.cells[2]));
@@ -116,6 +109,7 @@ deformable::DeformableSettings bodySettings(const io::DeformableScene& s, double
   d.bodyContact = s.parts.size() > 1;
   d.contactPenalty = s.contactPenalty;
   d.contactDamping = s.contactDamping;
+  d.bodyFriction = s.bodyFriction;
   d.rigidContact = !s.rigidBodies.empty();
   return d;
 }
@@ -130,7 +124,7 @@ std::vector<deformable::RigidObstacle> rigidObstacles(const io::DeformableScene&
     contact::LevelSetSettings settings;
     settings.cellsPerDn = r.cellsPerDn;
     const std::string source = fmt::format("{}: rigid_bodies '{}'", scene.file.string(), r.part.name);
-    levelSets.push_back(std::make_unique<contact::LevelSet>(librarySurface(r.part), settings, source));
+    levelSets.push_back(std::make_unique<contact::LevelSet>(io::librarySurface(r.part), settings, source));
     deformable::RigidObstacle o;
     o.levelSet = levelSets.back().get();
     o.position = r.part.position;
@@ -249,7 +243,9 @@ void runDeform(const DeformRequest& o) {
     }
   }
   body.setVelocities(velocity);
-  if (!scene.rigidBodies.empty()) body.setObstacles(rigidObstacles(scene, levelSets, log));
+  // Moving rigid bodies: a World of them all, the body advancing inside its step; else fixed obstacles.
+  const std::unique_ptr<DeformRigidPack> pack = DeformRigidPack::make(scene, body, out, log);
+  if (!pack && !scene.rigidBodies.empty()) body.setObstacles(rigidObstacles(scene, levelSets, log));
   const double dt = body.stableStep().dt;
   logBody(log, body, scene);
   deformable::StressHistory history;
@@ -258,6 +254,13 @@ void runDeform(const DeformRequest& o) {
     // The history and the frames are written before the checkpoint (save below): what a stop
     // left beyond the checkpoint's time is dropped and made again.
     deformable::readDeformableCheckpoint(checkpoint, body);
+    if (pack) {
+      pack->restore();
+    } else if (fs::exists(DeformRigidPack::checkpointPath(out))) {
+      core::failInput(DeformRigidPack::checkpointPath(out).string(),
+                      "the run that wrote the checkpoint had moving rigid bodies, and {} has none; restore their "
+                      "'fixed: false' or start anew without --restart", o.scene);
+    }
     if (fs::exists(historyFile)) history = deformable::StressHistory::readCsv(historyFile);
     history.keepUpTo(body.time());
     if (fs::exists(pvd)) frames = io::readCollection(pvd);
@@ -270,12 +273,16 @@ void runDeform(const DeformRequest& o) {
     deformable::writeDeformableVtu(body, out / name);
     frames.push_back({body.time(), name});
     io::writeCollection(pvd, frames);
+    if (pack) pack->writeFrame();
   };
   const auto save = [&] { // the checkpoint last: a stop in between leaves outputs ahead of it, not behind
     history.writeCsv(historyFile);
     writeSummary(out / "summary.json", body, history, partOfElementName);
-    deformable::writeDeformableCheckpoint(body, checkpoint);
+    if (pack) pack->stage();
+    deformable::writeDeformableCheckpoint(body, checkpoint); // the commit point (DeformRigidPack.hpp)
+    if (pack) pack->commit();
   };
+  if (!o.restart) DeformRigidPack::removeCheckpoints(out);
   if (frames.empty()) writeFrame();
   if (history.samples().empty()) history.record(body);
   const double every = scene.framesEvery;
@@ -284,7 +291,11 @@ void runDeform(const DeformRequest& o) {
   auto lastSave = std::chrono::steady_clock::now();
   const auto start = lastSave;
   while (body.time() < scene.duration * (1.0 - 1e-12)) {
-    body.step(dt); // fixed steps: a restart to a longer duration continues the same sequence
+    if (pack) {
+      pack->step(); // the World's step advances the body by dt inside it
+    } else {
+      body.step(dt); // fixed steps: a restart to a longer duration continues the same sequence
+    }
     if (body.steps() % scene.stressEvery == 0) history.record(body);
     if (body.time() >= nextFrame * (1.0 - 1e-12) && body.time() < scene.duration * (1.0 - 1e-12)) {
       writeFrame();
@@ -318,7 +329,8 @@ void runDeform(const DeformRequest& o) {
             "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
             1e-6 * e.tension.value, e.tension.time, partOfElementName[e.tension.element], e.tension.element,
             1e-6 * e.differential.value, e.differential.time, 1e-6 * e.vonMises.value);
-  for (std::size_t k = 0; k < body.obstacleLoads().size(); ++k) {
+  if (pack) pack->logEnd(log);
+  for (std::size_t k = 0; !pack && k < body.obstacleLoads().size(); ++k) {
     const Vec3& f = body.obstacleLoads()[k].force;
     log->info("rigid body '{}' carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", scene.rigidBodies[k].part.name,
               f.x(), f.y(), f.z());

@@ -74,7 +74,6 @@ BodyContact::BodyContact(const DeformableMesh& mesh, const std::vector<SurfaceTr
                          double dampingRatio, double impedance)
     : triangles_(triangles), penalty_(penalty),
       dampingRatio_(dampingRatio), impedance_(impedance) {
-  const int nen = mesh.nodesPerElement();
   const std::size_t nodes = mesh.nodeCount();
   nodePart_ = deformable::nodeParts(mesh, partCount_);
   trianglePart_.resize(triangles_.size());
@@ -125,8 +124,13 @@ BodyContact::BodyContact(const DeformableMesh& mesh, const std::vector<SurfaceTr
 }
 
 BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<Vec3>& v,
-                                  std::vector<Vec3>& forces) const {
+                                  std::vector<Vec3>& forces, ContactorLoads* contactor) const {
   BodyContactStats stats;
+  if (contactor != nullptr) {
+    contactor->force.assign(x.size(), Vec3::Zero());
+    contactor->target.assign(x.size(), -1);
+    contactor->share.assign(x.size(), 0.0);
+  }
   if (partCount_ < 2 || tets_.empty()) {
     return stats;
   }
@@ -269,6 +273,14 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
     const auto& c = tets_[f.target];
     for (int k = 0; k < 3; ++k) {
       forces[tri[k]] -= f.contactorShare[k] * f.normal;
+      if (contactor != nullptr) {
+        const auto a = static_cast<std::size_t>(tri[k]);
+        contactor->force[a] -= f.contactorShare[k] * f.normal;
+        if (f.contactorShare[k] > contactor->share[a]) { // the first of equal shares: serial order
+          contactor->share[a] = f.contactorShare[k];
+          contactor->target[a] = static_cast<std::int32_t>(f.target);
+        }
+      }
     }
     for (int n = 0; n < 4; ++n) {
       forces[c[n]] += f.targetShare[n] * f.normal;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// @file BodyContact.hpp
-/// Frictionless contact between deformable bodies by Munjiza's distributed potential (seed 002
+/// Normal contact between deformable bodies by Munjiza's distributed potential (seed 002
 /// eq. 5-6; Munjiza 2004, "The Combined Finite-Discrete Element Method", ch. 2 and 5), on the
 /// current element geometry (docs/theory.md section 19, "Contact between deformable bodies").
+///
+/// Friction between the parts is BodyFriction.hpp's, on the contactor side given by add().
 ///
 /// The bodies are the disconnected parts of one mesh (e.g. a unit and its anvil merged into one
 /// DeformableMesh): two nodes are in the same part when an element links them. Parts do not touch
@@ -57,6 +59,14 @@
 
 namespace armour::deformable {
 
+/// The contactor side of one evaluation, per node, for friction (BodyFriction.hpp): what a node
+/// received as the corner of surface triangles lying inside other parts' elements.
+struct ContactorLoads {
+  std::vector<Vec3> force;          ///< the contactor forces on each node (unit: N); zero where none
+  std::vector<std::int32_t> target; ///< the target tet (BodyContact::targetTet) of its largest share; -1 where none
+  std::vector<double> share;        ///< that share's size (unit: N)
+};
+
 /// Totals of one contact evaluation.
 struct BodyContactStats {
   std::size_t candidatePairs = 0; ///< (triangle, element) pairs from the broad phase
@@ -71,9 +81,13 @@ public:
   BodyContact(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles, double penalty,
               double dampingRatio, double impedance);
 
-  /// Add the contact forces (unit: N) at `positions`, `velocities` to `forces`.
+  /// Add the contact forces (unit: N) at `positions`, `velocities` to `forces`; with `contactor`,
+  /// also the contactor side per node (sized to the nodes and filled here).
   BodyContactStats add(const std::vector<Vec3>& positions, const std::vector<Vec3>& velocities,
-                       std::vector<Vec3>& forces) const;
+                       std::vector<Vec3>& forces, ContactorLoads* contactor = nullptr) const;
+  /// The target tets: straight 4-node tets on the surface of each part (positively oriented).
+  [[nodiscard]] const std::array<std::int32_t, 4>& targetTet(std::size_t k) const { return tets_[k]; }
+  [[nodiscard]] std::size_t targetTetCount() const { return tets_.size(); }
 
   [[nodiscard]] std::size_t partCount() const { return partCount_; }
   [[nodiscard]] const std::vector<std::int32_t>& nodeParts() const { return nodePart_; } ///< part of each node

@@ -69,6 +69,15 @@ void validateSettings(const DeformableSettings& s, const std::string& source) {
   if (s.contactPenalty < 0.0) {
     core::failInput(source + ": contact_penalty", "{} Pa: must be positive, or 0 for 2 E", s.contactPenalty);
   }
+  core::requireFinite(s.bodyFriction, source + ": body_friction", "-");
+  if (s.bodyFriction < 0.0) {
+    core::failInput(source + ": body_friction", "{}: the Coulomb coefficient must be 0 (frictionless) or positive",
+                    s.bodyFriction);
+  }
+  if (s.bodyFriction > 0.0 && !s.bodyContact) {
+    core::failInput(source + ": body_friction", "{}: acts between the bodies, and their contact is off; give two "
+                                                "bodies or more, or remove it", s.bodyFriction);
+  }
   core::requireFinite(s.contactDamping, source + ": contact_damping", "-");
   if (s.contactDamping < 0.0) {
     core::failInput(source + ": contact_damping", "{}: must be 0 or positive; a negative damping adds energy",
@@ -152,6 +161,14 @@ DeformableBody::DeformableBody(DeformableMesh mesh, const DeformableSettings& se
     // Both contacts press on a node at most as springs in parallel: frequencies add in squares.
     const double omegaBody = contactFrequency(mesh_, triangles, masses_, bodyContact_->gradientBound());
     omegaContact = std::sqrt(omegaContact * omegaContact + omegaBody * omegaBody);
+    if (settings_.bodyFriction > 0.0) {
+      bodyFrictionStiffness_ = tributaryAreas(mesh_, triangles);
+      for (double& k : bodyFrictionStiffness_) {
+        k *= settings_.frictionStiffnessRatio * bodyContact_->gradientBound();
+      }
+      state_.bodyFrictionTets.assign(nodes, -1);
+      state_.bodyFrictionWeights.assign(nodes, std::array<double, 4>{});
+    }
   }
   // Two rigorous bounds on the mesh's highest frequency: the element one (2 c_d / l over the
   // elements, with mass scaling's effective lengths) and Gershgorin's on the assembled mesh; the
@@ -319,8 +336,14 @@ void DeformableBody::computeAccelerations() {
       }
       obstacleLoads_[o] = load;
     }
-    if (bodyContact_) {
+    if (bodyContact_ && bodyFrictionStiffness_.empty()) {
       bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_);
+    } else if (bodyContact_) {
+      bodyContactStats_ = bodyContact_->add(state_.positions, state_.velocities, contactForces_, &contactorLoads_);
+      const BodyFrictionAnchors anchors{std::span<std::int32_t>(state_.bodyFrictionTets),
+                                        std::span<std::array<double, 4>>(state_.bodyFrictionWeights)};
+      bodyFrictionTotal_ = addBodyFriction(*bodyContact_, contactorLoads_, state_.positions, settings_.bodyFriction,
+                                           bodyFrictionStiffness_, anchors, contactForces_);
     }
   }
   const auto nodes = static_cast<std::ptrdiff_t>(nodeCount());
@@ -410,6 +433,12 @@ void DeformableBody::step(double dt) {
     }
   }
   times_.update += now() - start;
+}
+
+void DeformableBody::prepare() {
+  if (!state_.accelerationsReady) {
+    computeAccelerations();
+  }
 }
 
 std::vector<Vec3> DeformableBody::internalForces() {
@@ -527,6 +556,12 @@ void DeformableBody::restore(const DeformableState& state, const std::string& so
                             "checkpoint was written with other friction settings; restart with those",
                     state.frictionAnchors.size(), state_.frictionAnchors.size(), settings_.halfSpaces.size(),
                     settings_.friction);
+  }
+  if (state.bodyFrictionTets.size() != state_.bodyFrictionTets.size() ||
+      state.bodyFrictionWeights.size() != state_.bodyFrictionWeights.size()) {
+    core::failInput(source, "the state holds {} body friction anchors, this body {} (body friction {}): the checkpoint "
+                            "was written with other friction settings; restart with those",
+                    state.bodyFrictionTets.size(), state_.bodyFrictionTets.size(), settings_.bodyFriction);
   }
   state_ = state;
 }

@@ -3,9 +3,11 @@
 /// @file DeformableBody.hpp
 /// One deformable unit on its own: a tet mesh of compressible Neo-Hookean material advanced by
 /// explicit central differences with lumped mass (seed 002 eq. 1-4, 7-10), under gravity, nodal
-/// forces, fixed or velocity-driven nodes, and frictionless contact with static half-spaces
-/// (HalfSpaceContact.hpp) and between the mesh's disconnected parts (BodyContact.hpp: several
-/// bodies of one material as one mesh, e.g. a unit and its anvil).
+/// forces, fixed or velocity-driven nodes, and contact, with Coulomb friction if asked, with static
+/// half-spaces (HalfSpaceContact.hpp, HalfSpaceFriction.hpp), with rigid bodies whose poses the
+/// caller sets (RigidObstacleContact.hpp) and between the mesh's disconnected parts
+/// (BodyContact.hpp, BodyFriction.hpp: several bodies of one material as one mesh, e.g. a unit and
+/// its anvil).
 ///
 /// Step (velocity form of central differences, "kick-drift-kick"):
 ///   v += dt/2 a;  x += dt v;  a = (f_ext + m g + f_c(x) - f_int(x, v)) / m - alpha v;  v += dt/2 a,
@@ -24,6 +26,7 @@
 /// Not thread-safe itself: call from one thread.
 
 #include "deformable/BodyContact.hpp"
+#include "deformable/BodyFriction.hpp"
 #include "deformable/DeformableMesh.hpp"
 #include "deformable/HalfSpaceContact.hpp"
 #include "deformable/RigidObstacleContact.hpp"
@@ -31,6 +34,7 @@
 #include "deformable/StableStep.hpp"
 #include "deformable/TetElement.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -85,6 +89,11 @@ struct DeformableSettings {
   /// Contact damping of the body contact (unit: -): a pressure zeta rho c_d w with w the closing
   /// speed; 0 for elastic contact.
   double contactDamping = 0.0;
+  /// Coulomb coefficient between the deformable bodies (unit: -), 0 = frictionless
+  /// (BodyFriction.hpp): each pressed surface node sticks to a material point of the other body
+  /// by a tangential spring (frictionStiffnessRatio of the body contact's stiffness) capped at mu
+  /// times its normal force. Needs bodyContact.
+  double bodyFriction = 0.0;
 };
 
 /// The dynamic state, all that a restart needs besides the mesh, settings and boundary conditions.
@@ -99,6 +108,10 @@ struct DeformableState {
   /// m); empty without friction.
   std::vector<Vec3> frictionAnchors;
   std::vector<std::uint8_t> frictionActive; ///< 1 where the anchor above is set
+  /// Friction anchors of the body contact (BodyFriction.hpp), one per node: the target tet (-1:
+  /// none) and the barycentric coordinates in it; empty without body friction.
+  std::vector<std::int32_t> bodyFrictionTets;
+  std::vector<std::array<double, 4>> bodyFrictionWeights;
 };
 
 /// Wall time spent in each stage of the step since the body was made (unit: s).
@@ -152,6 +165,10 @@ public:
   /// limit, l_min, c_d and the element named) or when massDamping x dt > 1, DeformableStepError
   /// on an inverted element or a non-finite state.
   void step(double dt);
+  /// Evaluate the forces and accelerations at the current state, if not done yet (the first
+  /// step does it too): obstacleLoads() and nodalContactForces() then belong to the current
+  /// positions and obstacle poses. Throws as step() does on an inverted element.
+  void prepare();
 
   [[nodiscard]] const DeformableStepTimes& stepTimes() const { return times_; }
 
@@ -180,6 +197,9 @@ public:
   [[nodiscard]] const std::vector<Vec3>& nodalContactForces() const { return contactForces_; }
   /// Totals of the body contact at the last force evaluation.
   [[nodiscard]] const BodyContactStats& bodyContactStats() const { return bodyContactStats_; }
+  /// Sum of the magnitudes of the body friction forces on the contactor nodes at the last force
+  /// evaluation (unit: N); 0 without settings().bodyFriction.
+  [[nodiscard]] double bodyFrictionTotal() const { return bodyFrictionTotal_; }
   [[nodiscard]] double contactGradient() const { return contactGradient_; } ///< G in use (unit: Pa/m)
   /// Mean Cauchy stress of each element (unit: Pa), tension positive.
   [[nodiscard]] std::vector<Mat3> elementStresses() const;
@@ -220,6 +240,9 @@ private:
   std::vector<Vec3> contactForces_;         ///< per node, at the last force evaluation (unit: N)
   std::vector<double> frictionStiffness_;   ///< per node: kappa G A_a, 0 off the surface (unit: N/m); empty without friction
   std::vector<Vec3> halfSpaceScratch_;      ///< one half-space's normal nodal forces (friction only)
+  std::vector<double> bodyFrictionStiffness_; ///< per node: kappa (4 p / H)_max A_a (unit: N/m); empty without body friction
+  ContactorLoads contactorLoads_;           ///< the body contact's contactor side (body friction only)
+  double bodyFrictionTotal_ = 0.0;          ///< sum of |f| of the body friction at the last evaluation (unit: N)
   std::vector<RigidObstacle> obstacles_;    ///< rigid bodies in contact (setObstacles)
   std::vector<ObstacleLoad> obstacleLoads_; ///< their loads at the last evaluation
   Vec3 frictionTotal_ = Vec3::Zero();       ///< sum of the half-spaces' friction forces at the last evaluation (unit: N)

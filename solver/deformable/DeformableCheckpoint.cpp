@@ -90,12 +90,15 @@ std::string setupIdentity(const DeformableBody& body) {
                      "contact.rigid = {}\ncontact.bodies = {}\ncontact.penalty = {} Pa\ncontact.damping = {}\n",
                      s.contactGradient, s.friction, s.frictionStiffnessRatio, s.rigidContact, s.bodyContact,
                      s.contactPenalty, s.contactDamping);
-  // The rigid bodies (a restart among others is another setup): pose, scale, level-set grid.
+  if (s.bodyFriction > 0.0) out += fmt::format("contact.body_friction = {}\n", s.bodyFriction); // absent: the text of older files
+  // The rigid bodies (a restart among others is another setup): pose (of a fixed one), scale,
+  // level-set grid.
   for (std::size_t k = 0; k < body.obstacles().size(); ++k) {
     const RigidObstacle& o = body.obstacles()[k];
     const auto& q = o.orientation;
-    out += fmt::format("rigid[{}] = position [{}, {}, {}] m, orientation [{}, {}, {}, {}], scale {}", k, o.position.x(),
-                       o.position.y(), o.position.z(), q.w(), q.x(), q.y(), q.z(), o.scale);
+    out += o.moving ? fmt::format("rigid[{}] = moving, scale {}", k, o.scale)
+                    : fmt::format("rigid[{}] = position [{}, {}, {}] m, orientation [{}, {}, {}, {}], scale {}", k,
+                                  o.position.x(), o.position.y(), o.position.z(), q.w(), q.x(), q.y(), q.z(), o.scale);
     if (o.levelSet != nullptr)
       out += fmt::format(", level set cell {} m from [{}, {}, {}]", o.levelSet->cellSize(), o.levelSet->origin().x(),
                          o.levelSet->origin().y(), o.levelSet->origin().z());
@@ -131,6 +134,12 @@ void writeDeformableCheckpoint(const DeformableBody& body, const std::filesystem
         const std::string identity = setupIdentity(body);
         put(out, static_cast<std::uint64_t>(identity.size()));
         out.write(identity.data(), static_cast<std::streamsize>(identity.size()));
+        // Version 4: the body friction anchors (BodyFriction.hpp), count 0 without body friction.
+        put(out, static_cast<std::uint64_t>(s.bodyFrictionTets.size()));
+        out.write(reinterpret_cast<const char*>(s.bodyFrictionTets.data()),
+                  static_cast<std::streamsize>(s.bodyFrictionTets.size() * sizeof(std::int32_t)));
+        out.write(reinterpret_cast<const char*>(s.bodyFrictionWeights.data()),
+                  static_cast<std::streamsize>(s.bodyFrictionWeights.size() * sizeof(std::array<double, 4>)));
       },
       true);
 }
@@ -197,6 +206,25 @@ void readDeformableCheckpoint(const std::filesystem::path& path, DeformableBody&
                             "without --restart",
                       firstDifference(identity, now));
     }
+  }
+  if (version >= 4) {
+    const auto anchors = get<std::uint64_t>(in, file, "the body friction anchor count");
+    if (anchors != body.state().bodyFrictionTets.size()) {
+      core::failInput(file, "holds {} body friction anchors, this body {}: it was written with another "
+                            "contact.body_friction; restart with that", anchors, body.state().bodyFrictionTets.size());
+    }
+    state.bodyFrictionTets.resize(anchors);
+    state.bodyFrictionWeights.resize(anchors);
+    in.read(reinterpret_cast<char*>(state.bodyFrictionTets.data()),
+            static_cast<std::streamsize>(anchors * sizeof(std::int32_t)));
+    in.read(reinterpret_cast<char*>(state.bodyFrictionWeights.data()),
+            static_cast<std::streamsize>(anchors * sizeof(std::array<double, 4>)));
+    if (!in) {
+      core::failInput(file, "the file ends inside the body friction anchors: it is truncated; use an earlier checkpoint");
+    }
+  } else {
+    state.bodyFrictionTets = body.state().bodyFrictionTets; // older files: no body friction (the size check above)
+    state.bodyFrictionWeights = body.state().bodyFrictionWeights;
   }
   body.restore(state, file);
 }

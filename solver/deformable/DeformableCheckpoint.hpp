@@ -8,7 +8,9 @@
 ///   then nodes x 3 doubles each of positions, velocities and accelerations; from version 2, uint64
 ///   friction anchors A (0 without friction), A x 3 doubles of anchors and A bytes of their flags.
 ///   From version 3, uint64 length L and L bytes of text: setupIdentity() of the body that wrote
-///   it. Version 1 and 2 files (no anchors; no setup text) are still read.
+///   it. From version 4, uint64 body friction anchors B (0 without body friction), B int32 target
+///   tets and B x 4 doubles of barycentric coordinates (BodyFriction.hpp). Version 1 to 3 files
+///   (no anchors; no setup text; no body friction) are still read.
 /// The mesh, material and boundary conditions are not stored: they come from the setup. The reader
 /// refuses a file whose node and element counts or element order differ, and (version 3) one
 /// whose setup text differs from the body's, naming the first line that changed. Boundary
@@ -22,7 +24,7 @@
 
 namespace armour::deformable {
 
-inline constexpr std::uint32_t kDeformableCheckpointVersion = 3;
+inline constexpr std::uint32_t kDeformableCheckpointVersion = 4;
 
 /// The setup a checkpoint belongs to, one "key = value" line each: the mesh (counts and a hash of
 /// its nodes and connectivity), the material, gravity, F-bar, damping, step safety, mass scaling,

@@ -39,6 +39,9 @@ struct RigidObstacle {
   double scale = 1.0;                          ///< uniform scale of the shape (unit: -)
   Vec3 position = Vec3::Zero();                ///< origin of the shape's frame, world (unit: m)
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity(); ///< shape frame -> world
+  /// The pose is state that the caller moves (a body of a rigid solver, which keeps it in its own
+  /// checkpoint), not setup: a deformable checkpoint then leaves it out of its setup text.
+  bool moving = false;
 };
 
 /// What the contact does to the rigid body, at the last evaluation.

@@ -28,9 +28,11 @@ const KeyList kMaterialKeys{"density", "young_modulus", "poisson_ratio", "viscos
 const KeyList kBodyKeys{"name",        "shape",    "mesh",   "volume", "tets", "shape_seed",        "params", "box",
                         "cells",       "position", "orientation", "velocity", "random_orientation", "grid"};
 const KeyList kGridKeys{"counts", "spacing"};
-const KeyList kRigidKeys{"name", "shape", "volume", "shape_seed", "params", "position", "orientation", "cells_per_dn"};
+const KeyList kRigidKeys{"name",        "shape", "volume", "shape_seed", "params", "position", "orientation",
+                         "cells_per_dn", "fixed", "density", "velocity"};
 const KeyList kHalfSpaceKeys{"point", "normal"};
-const KeyList kContactKeys{"friction", "gradient", "penalty", "damping"};
+const KeyList kContactKeys{"friction",          "body_friction",        "gradient", "penalty", "damping",
+                           "rigid_penalty_modulus", "rigid_restitution"};
 const KeyList kRunKeys{"duration", "step_safety", "mass_scaling", "frames_every", "stress_every", "checkpoint_every"};
 const KeyList kOutputKeys{"folder"};
 
@@ -149,6 +151,15 @@ RigidPart readRigid(const Block& b, std::size_t index) {
   r.part.orientation = readOrientation(b, "orientation");
   r.cellsPerDn = b.number("cells_per_dn", {"-", kPositive, "24: level-set cells per Dn of the shape"}, r.cellsPerDn);
   if (r.cellsPerDn > 200.0) b.failValue("cells_per_dn", "more than 200 cells per Dn; give fewer (24 is usual)");
+  r.fixed = b.flag("fixed", true);
+  if (r.fixed) {
+    for (const char* key : {"density", "velocity"}) {
+      if (b.has(key)) b.failValue(key, "is for a moving rigid body; add 'fixed: false' or remove it");
+    }
+  } else {
+    r.density = b.number("density", {"kg/m^3", kPositive, "2340; the material's density when absent"}, 0.0);
+    r.part.velocity = b.vec3("velocity", {"m/s", kAnyNumber, "[0, 0, -1]"}, Eigen::Vector3d::Zero());
+  }
   return r;
 }
 
@@ -158,6 +169,14 @@ YAML::Node blockOrEmpty(const Block& parent, std::string_view key) {
 }
 
 } // namespace
+
+geometry::TriangleMesh librarySurface(const DeformablePart& part) {
+  geometry::ShapeRequest request;
+  request.volume = part.volume;
+  request.seed = part.shapeSeed;
+  request.params = part.params;
+  return geometry::makeShape(part.shape, request);
+}
 
 DeformableScene readDeformableScene(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -225,6 +244,20 @@ DeformableScene readDeformableScene(const std::filesystem::path& file) {
   scene.contactGradient = c.number("gradient", {"Pa/m", kNonNegative, "0 = 10 E / h"}, 0.0);
   scene.contactPenalty = c.number("penalty", {"Pa", kNonNegative, "0 = 2 E"}, 0.0);
   scene.contactDamping = c.number("damping", {"-", kNonNegative, "0.2"}, 0.0);
+  scene.bodyFriction = c.number("body_friction", {"-", kNonNegative, "0.6; 0 frictionless (between the bodies)"}, 0.0);
+  if (scene.bodyFriction > 0.0 && scene.parts.size() < 2)
+    c.failValue("body_friction", "acts between the deformable bodies, and there is one; add bodies or remove it");
+  const bool moving = std::any_of(scene.rigidBodies.begin(), scene.rigidBodies.end(), [](const RigidPart& r) { return !r.fixed; });
+  for (const char* key : {"rigid_penalty_modulus", "rigid_restitution"}) {
+    if (!moving && c.has(key))
+      c.failValue(key, "sets the contact of moving rigid bodies, and every rigid body is fixed; give a rigid body "
+                       "'fixed: false' or remove it");
+  }
+  scene.rigidPenaltyModulus =
+      c.number("rigid_penalty_modulus", {"Pa", kPositive, "1e9 (as contact.penalty_modulus in scene files)"},
+               scene.rigidPenaltyModulus);
+  scene.rigidRestitution = c.number("rigid_restitution", {"-", Range{0.0, 1.0, true, false}, "0.05 (seed 001)"},
+                                    scene.rigidRestitution);
   if (scene.friction > 0.0 && scene.halfSpaces.empty() && scene.rigidBodies.empty())
     c.failValue("friction", "acts on the half-spaces and the rigid bodies, and there are none; add half_spaces or "
                             "rigid_bodies, or remove friction");

@@ -5,6 +5,8 @@
 /// blocks meshed into one deformable mesh, static half-spaces, material, contact and run settings.
 /// Plain data; `armour deform` builds the deformable::DeformableBody from it (app/DeformCommands).
 
+#include "geometry/TriangleMesh.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -34,13 +36,20 @@ struct DeformablePart {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero(); ///< initial velocity of every node (unit: m/s)
 };
 
-/// A fixed rigid body (`rigid_bodies:`): a library shape at a pose, felt through its level set
-/// (deformable/RigidObstacleContact.hpp). Only shape, volume, shape_seed, params, position and
-/// orientation of `part` are used.
+/// A rigid body (`rigid_bodies:`): a library shape at a pose, felt through its level set
+/// (deformable/RigidObstacleContact.hpp), fixed or moving (then a body of armour's rigid solver,
+/// simulation/DeformableCoupling.hpp). Only shape, volume, shape_seed, params, position,
+/// orientation and velocity of `part` are used.
 struct RigidPart {
   DeformablePart part;
   double cellsPerDn = 24.0;           ///< level-set cells per Dn (unit: -)
+  bool fixed = true;                  ///< false: it moves under gravity and its contacts
+  double density = 0.0;               ///< of a moving body (unit: kg/m^3); the scene's material density when not given
 };
+
+/// The library surface of a part (shape, volume, shape_seed, params), centred on its centroid,
+/// in the shape's natural frame. Throws core::InputError from the shape generator.
+[[nodiscard]] geometry::TriangleMesh librarySurface(const DeformablePart& part);
 
 struct DeformableHalfSpace {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< unit: m
@@ -58,12 +67,15 @@ struct DeformableScene {
   bool fBar = true;                   ///< F-bar on 10-node elements
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81); ///< unit: m/s^2
   std::vector<DeformablePart> parts;
-  std::vector<RigidPart> rigidBodies; ///< fixed rigid bodies: a deformable unit in a rigid pack
+  std::vector<RigidPart> rigidBodies; ///< rigid bodies, fixed or moving: a deformable unit in a rigid pack
   std::vector<DeformableHalfSpace> halfSpaces;
   double friction = 0.0;              ///< Coulomb mu on the half-spaces (unit: -)
   double contactGradient = 0.0;       ///< G of the half-spaces (unit: Pa/m); 0 = 10 E / h
   double contactPenalty = 0.0;        ///< body contact p (unit: Pa); 0 = 2 E
   double contactDamping = 0.0;        ///< body contact zeta (unit: -)
+  double bodyFriction = 0.0;          ///< Coulomb mu between the deformable bodies (unit: -)
+  double rigidPenaltyModulus = 1.0e9; ///< contact of moving rigid bodies with each other and the half-spaces (unit: Pa)
+  double rigidRestitution = 0.05;     ///< the same contact's restitution (unit: -), seed 001
   double massDamping = 0.0;           ///< unit: 1/s
   double duration = 0.01;             ///< simulated time (unit: s)
   double stepSafety = 0.9;            ///< of the stable step (unit: -)

@@ -128,4 +128,61 @@ sed 's/dolos.stl/missing.stl/' "$out/from-mesh.yaml" > "$out/missing-mesh.yaml"
 set +e; msg=$("$armour" --log-level warn deform "$out/missing-mesh.yaml" -o "$out/missing" 2>&1); code=$?; set -e
 [ $code -eq 2 ] && grep -q "bodies\[0\].mesh = missing.stl: no such file" <<< "$msg" \
   || fail "a missing mesh file: expected exit 2 naming bodies[0].mesh, got $code: $msg"
-echo "deform CLI: outputs, tension, restart, refusals, the rock dump, the beam on rigid supports and a mesh file as expected"
+# Moving rigid bodies (rigid_bodies[i].fixed: false; app/DeformRigidPack): a deformable cube
+# (tet4) set on a free rigid block that stands on the floor, damped to rest: the block carries the
+# cube's weight within 0.5 % and hardly moves. Continued from a stop at a frame time, the
+# run ends with the same bytes in checkpoint.bin, stress_history.csv, the World's state
+# (rigid_checkpoint.nc, build line aside) and the rigid frames; on 2 threads with the same bytes as
+# on 1. A restart with the block made fixed, or with another density, is refused naming why; so is
+# one whose rigid checkpoint is gone.
+cat > "$out/stack.yaml" <<'YAML'
+material: {mass_damping: 200}
+element: tet4
+bodies:
+  - {name: cube, box: [0.5, 0.5, 0.5], cells: [2, 2, 2], position: [0.1, 0, 1.2505]}
+rigid_bodies:
+  - {name: block, shape: cube, volume: 1, position: [0, 0, 0.5], fixed: false}
+half_spaces:
+  - {point: [0, 0, 0], normal: [0, 0, 1]}
+contact: {friction: 0.6}
+run: {duration: 0.2, frames_every: 0.05}
+YAML
+stack() { "$armour" --log-level info deform "$out/stack.yaml" "$@"; }
+stack -o "$out/stack" --threads 1 > "$out/stack.log" 2>&1 || fail "the stack on a moving block failed: $(tail -n 3 "$out/stack.log")"
+/usr/bin/python3 - "$out/stack.log" <<'PY' || fail "the moving block does not carry the cube"
+import re, sys
+log = open(sys.argv[1]).read()
+m = re.search(r"rigid body 'block' moved \[([^,]+), ([^,]+), ([^\]]+)\] m, speed ([0-9.e+-]+) m/s; it carries \[[^,]+, [^,]+, ([^\]]+)\] N", log)
+assert m, "no closing line for the block"
+moved = [float(m.group(k)) for k in (1, 2, 3)]
+speed, carried = float(m.group(4)), float(m.group(5))
+weight = 0.125 * 2340 * 9.81
+print("block moved", moved, "m, speed", speed, "m/s, carries", carried, "N of the cube's weight", weight, "N")
+assert abs(-carried - weight) < 0.005 * weight, (carried, weight)
+assert max(abs(u) for u in moved) < 1e-3 and speed < 1e-3, (moved, speed)
+PY
+grep -o 'file="[^"]*"' "$out/stack/rigid/bodies.pvd" | sed 's/file="\(.*\)"/\1/' | while read -r frame; do
+  [[ -s "$out/stack/rigid/$frame" ]] || fail "rigid/bodies.pvd lists $frame, which does not exist"
+done
+[[ $(grep -c '<DataSet' "$out/stack/rigid/bodies.pvd") == 5 ]] || fail "expected rigid frames at 0, 0.05, ..., 0.2 s"
+stack -o "$out/stack-split" --threads 1 --duration 0.1 > /dev/null 2>&1
+stack -o "$out/stack-split" --threads 1 --restart > /dev/null 2>&1 || fail "the moving block's restart failed"
+for f in checkpoint.bin stress_history.csv rigid/bodies.pvd rigid/bodies/frame_000004.vtp; do
+  cmp "$out/stack/$f" "$out/stack-split/$f" || fail "moving rigid bodies, restart: $f differs from the uninterrupted run"
+done
+rigid_state() { ncdump "$1" | grep -v armour_build; }
+diff <(rigid_state "$out/stack/rigid_checkpoint.nc") <(rigid_state "$out/stack-split/rigid_checkpoint.nc") > /dev/null \
+  || fail "moving rigid bodies, restart: rigid_checkpoint.nc differs from the uninterrupted run"
+stack -o "$out/stack-2" --threads 2 > /dev/null 2>&1
+cmp "$out/stack/checkpoint.bin" "$out/stack-2/checkpoint.bin" || fail "moving rigid bodies: 2 threads differ from 1"
+sed 's/, fixed: false}/}/' "$out/stack.yaml" > "$out/stack-fixed.yaml"
+set +e; msg=$("$armour" --log-level warn deform "$out/stack-fixed.yaml" -o "$out/stack-split" --restart 2>&1); code=$?; set -e
+[ $code -eq 2 ] && grep -q "'rigid\[0\] = moving, .*' then, 'rigid\[0\] = position \[0, 0, 0.5\] m" <<< "$msg" || fail "restart with the block fixed: $code: $msg"
+sed 's/fixed: false}/fixed: false, density: 2500}/' "$out/stack.yaml" > "$out/stack-dense.yaml"
+set +e; msg=$("$armour" --log-level warn deform "$out/stack-dense.yaml" -o "$out/stack-split" --restart 2>&1); code=$?; set -e
+[ $code -eq 2 ] && grep -q "does not match the scene.*density 2500" <<< "$msg" || fail "restart with another density: $code: $msg"
+rm "$out/stack-split/rigid_checkpoint.nc"
+set +e; msg=$("$armour" --log-level warn deform "$out/stack.yaml" -o "$out/stack-split" --restart 2>&1); code=$?; set -e
+[ $code -eq 2 ] && grep -q "the rigid bodies' state of step [0-9]* (that of checkpoint.bin) is not there" <<< "$msg" \
+  || fail "restart without the rigid checkpoint: $code: $msg"
+echo "deform CLI: outputs, tension, restart, refusals, the rock dump, the beam on rigid supports, a mesh file and moving rigid bodies as expected"

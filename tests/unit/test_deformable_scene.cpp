@@ -78,6 +78,26 @@ TEST(DeformableScene, DefaultsAreSeed002sConcrete) {
   EXPECT_EQ(s.output.filename(), "scene-out");
 }
 
+TEST(DeformableScene, RigidBodiesAreFixedUnlessToldToMove) {
+  const auto s = readText(kMinimal + R"(rigid_bodies:
+  - {name: pier, shape: cube, volume: 1, position: [0, 0, -0.5]}
+  - {name: block, shape: cube, volume: 2, position: [2, 0, -0.5], fixed: false, density: 2500, velocity: [1, 0, 0]}
+  - {name: light, shape: cube, volume: 1, position: [4, 0, -0.5], fixed: false}
+contact: {rigid_restitution: 0.2, rigid_penalty_modulus: 4e9}
+)");
+  ASSERT_EQ(s.rigidBodies.size(), 3U);
+  EXPECT_TRUE(s.rigidBodies[0].fixed);
+  EXPECT_FALSE(s.rigidBodies[1].fixed);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[1].density, 2500.0);
+  EXPECT_EQ(s.rigidBodies[1].part.velocity, Eigen::Vector3d(1, 0, 0));
+  EXPECT_DOUBLE_EQ(s.rigidBodies[2].density, 0.0); // the material's
+  EXPECT_DOUBLE_EQ(s.rigidRestitution, 0.2);
+  EXPECT_DOUBLE_EQ(s.rigidPenaltyModulus, 4e9);
+  const auto d = readText(kMinimal);
+  EXPECT_DOUBLE_EQ(d.rigidRestitution, 0.05); // seed 001
+  EXPECT_DOUBLE_EQ(d.rigidPenaltyModulus, 1e9);
+}
+
 TEST(DeformableScene, ErrorsNameTheKeyTheValueAndTheFix) {
   const struct {
     std::string text;
@@ -98,6 +118,18 @@ TEST(DeformableScene, ErrorsNameTheKeyTheValueAndTheFix) {
       {"bodies: []\nrun: {duration: 1}\n", "expected a list of one or more bodies"},
       {kMinimal + "contact: {friction: 0.6}\n", "contact.friction = 0.6: acts on the half-spaces and the rigid bodies, and there are none"},
       {kMinimal + "half_spaces: [{point: [0, 0, 0], normal: [0, 0, 0]}]\n", "a zero vector has no direction"},
+      {kMinimal + "contact: {body_friction: 0.6}\n",
+       "contact.body_friction = 0.6: acts between the deformable bodies, and there is one"},
+      {kMinimal + "contact: {body_friction: -0.6}\n", "contact.body_friction = -0.6: must be >= 0"},
+      {kMinimal + "rigid_bodies: [{shape: cube, volume: 1, position: [0, 0, -1], density: 2400}]\n",
+       "rigid_bodies[0].density = 2400: is for a moving rigid body; add 'fixed: false' or remove it"},
+      {kMinimal + "rigid_bodies: [{shape: cube, volume: 1, position: [0, 0, -1], fixed: false, density: 0}]\n",
+       "rigid_bodies[0].density = 0: must be > 0"},
+      {kMinimal + "rigid_bodies: [{shape: cube, volume: 1, position: [0, 0, -1]}]\ncontact: {rigid_restitution: 0.1}\n",
+       "contact.rigid_restitution = 0.1: sets the contact of moving rigid bodies, and every rigid body is fixed"},
+      {kMinimal + "rigid_bodies: [{shape: cube, volume: 1, position: [0, 0, -1], fixed: false}]\n"
+                  "contact: {rigid_restitution: 0}\n",
+       "contact.rigid_restitution = 0: must be in (0, 1]"},
       {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\n", "missing key 'run'"},
       {"bodies:\n  - {shape: cube, volume: 1, position: [0, 0, 0]}\nrun: {duration: 0}\n",
        "run.duration = 0: must be > 0"},
