@@ -106,6 +106,12 @@ std::unique_ptr<DeformRigidPack> DeformRigidPack::make(const io::DeformableScene
                                     density),
               world.shape(spec.shape).levelSet->cellSize());
   }
+  if (const double limit = world.stableTimeStep(); body.stableStep().dt > limit) {
+    core::failInput(scene.file.string() + ": contact.rigid_penalty_modulus",
+                    "{:.4g} Pa: the rigid bodies' contact is stable for steps up to {:.4g} s, and the deformable "
+                    "step is {:.4g} s; lower the modulus (the default 1e9 Pa) or make the rigid bodies heavier",
+                    scene.rigidPenaltyModulus, limit, body.stableStep().dt);
+  }
   pack->coupling_ = std::make_shared<simulation::DeformableCoupling>(body, ids);
   world.addLoadStage(pack->coupling_);
   body.setObstacles(pack->coupling_->obstacles(world)); // sizes the friction anchors before a restore

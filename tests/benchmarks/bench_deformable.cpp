@@ -204,6 +204,8 @@ struct AnvilDropOptions {
   double viscosityFraction = 0.0;
   double cornerDistance = 0.15;
   double contactDamping = 0.0;
+  double bodyFriction = 0.0;
+  double contactPenalty = 0.0;
   std::string csv;
 };
 
@@ -216,6 +218,8 @@ int anvilDrop(const AnvilDropOptions& o) {
   settings.unitTets = o.unitTets;
   settings.anvilCells = o.anvilCells;
   settings.body.contactDamping = o.contactDamping;
+  settings.body.bodyFriction = o.bodyFriction;
+  settings.body.contactPenalty = o.contactPenalty;
   settings.body.material.viscosity = o.viscosityFraction *
       armour::deformable::criticalViscosity(settings.body.material, std::cbrt(settings.volume / o.unitTets));
   const double build0 = wallNow();
@@ -342,6 +346,10 @@ int main(int argc, char** argv) {
   app.add_option("--corner-distance", anvil.cornerDistance, "anvil drop: 'away from corners' means farther (m)");
   app.add_option("--contact-damping", anvil.contactDamping, "anvil drop: contact damping zeta (pressure zeta rho c w)")
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--body-friction", anvil.bodyFriction, "anvil drop: Coulomb coefficient between unit and anvil")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--contact-penalty", anvil.contactPenalty, "anvil drop: Munjiza's penalty p (Pa); 0 = 2 E")
+      ->check(CLI::Range(0.0, 1e15));
   app.add_option("--csv", anvil.csv, "anvil drop: write the stress history here");
   CLI11_PARSE(app, argc, argv);
   if (!anvilShape.empty()) {
@@ -349,9 +357,9 @@ int main(int argc, char** argv) {
     anvil.milliseconds = dropMs;
     anvil.viscosityFraction = viscosityFraction;
     fmt::print("bench_deformable --anvil-drop {} --unit-tets {} --anvil-cells {} --drop-ms {} --viscosity-fraction {} "
-               "--corner-distance {} --contact-damping {}\nbuild: {}\nload: {}\n",
+               "--corner-distance {} --contact-damping {} --body-friction {} --contact-penalty {}\nbuild: {}\nload: {}\n",
                anvil.shape, anvil.unitTets, anvil.anvilCells, dropMs, viscosityFraction, anvil.cornerDistance,
-               anvil.contactDamping, armour::core::buildInfo(), loadAverages());
+               anvil.contactDamping, anvil.bodyFriction, anvil.contactPenalty, armour::core::buildInfo(), loadAverages());
     return anvilDrop(anvil);
   }
   if (dropTets > 0) {

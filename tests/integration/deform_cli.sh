@@ -181,6 +181,10 @@ set +e; msg=$("$armour" --log-level warn deform "$out/stack-fixed.yaml" -o "$out
 sed 's/fixed: false}/fixed: false, density: 2500}/' "$out/stack.yaml" > "$out/stack-dense.yaml"
 set +e; msg=$("$armour" --log-level warn deform "$out/stack-dense.yaml" -o "$out/stack-split" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] && grep -q "does not match the scene.*density 2500" <<< "$msg" || fail "restart with another density: $code: $msg"
+sed 's/contact: {friction: 0.6}/contact: {friction: 0.6, rigid_penalty_modulus: 1e14}/' "$out/stack.yaml" > "$out/stack-stiff.yaml"
+set +e; msg=$("$armour" --log-level warn deform "$out/stack-stiff.yaml" -o "$out/stack-stiff" 2>&1); code=$?; set -e
+[ $code -eq 2 ] && grep -q "contact.rigid_penalty_modulus: 1e+14 Pa: the rigid bodies' contact is stable for steps up to" <<< "$msg" \
+  || fail "a rigid contact too stiff for the deformable step: $code: $msg"
 rm "$out/stack-split/rigid_checkpoint.nc"
 set +e; msg=$("$armour" --log-level warn deform "$out/stack.yaml" -o "$out/stack-split" --restart 2>&1); code=$?; set -e
 [ $code -eq 2 ] && grep -q "the rigid bodies' state of step [0-9]* (that of checkpoint.bin) is not there" <<< "$msg" \
