@@ -187,36 +187,19 @@ void logBody(const std::shared_ptr<spdlog::logger>& log, const deformable::Defor
   }
 }
 
-void runDeform(const DeformRequest& o) {
-  io::DeformableScene scene = io::readDeformableScene(o.scene);
-  if (o.durationGiven) scene.duration = o.duration;
-  if (!o.output.empty()) scene.output = fs::absolute(o.output);
-  const fs::path out = scene.output;
-  const fs::path checkpoint = out / "checkpoint.bin";
-  const fs::path historyFile = out / "stress_history.csv";
-  const fs::path pvd = out / "frames.pvd";
-  const fs::path runLog = out / "run.log";
-  if (o.restart && !fs::exists(checkpoint)) {
-    core::failInput(checkpoint.string(), "no checkpoint to continue from; run without --restart first");
-  }
-  if (o.restart) keepPreviousLog(runLog);
-  std::error_code ec;
-  fs::create_directories(out / "frames", ec);
-  if (ec) {
-    core::failInput(out.string(), "cannot create the output folder ({}); set output.folder in {} or --output to a "
-                                  "writable place", ec.message(), o.scene);
-  }
-  const core::ScopedLogFile logFile(runLog.string());
-  auto log = core::logger("deform");
-  log->info("{}", core::buildInfo());
-  log->info("deform {} -> {}{}", o.scene, out.string(), o.restart ? " (restart)" : "");
-  if (o.threads > 0) omp_set_num_threads(o.threads);
-
-  // The mesh: every part meshed, placed, and merged (parts touch through the body contact).
-  const std::vector<geometry::TetMesh> parts = meshParts(scene.parts, o.scene);
+/// The deformable body of a scene: every part meshed, placed and merged into one mesh (parts touch
+/// through the body contact), with its initial velocities; and the body name of each element.
+struct DeformSetup {
+  std::unique_ptr<deformable::DeformableBody> body;
   std::vector<std::string> partOfElementName;
+};
+
+DeformSetup buildBody(const io::DeformableScene& scene, const std::string& source,
+                      const std::shared_ptr<spdlog::logger>& log) {
+  const std::vector<geometry::TetMesh> parts = meshParts(scene.parts, source);
+  DeformSetup setup;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    partOfElementName.insert(partOfElementName.end(), parts[k].tets.size(), scene.parts[k].name);
+    setup.partOfElementName.insert(setup.partOfElementName.end(), parts[k].tets.size(), scene.parts[k].name);
     if (k < 10 || k + 1 == parts.size()) {
       log->info("body '{}': {} tetrahedra, {:.6g} m^3", scene.parts[k].name, parts[k].tets.size(),
                 parts[k].totalVolume());
@@ -225,13 +208,13 @@ void runDeform(const DeformRequest& o) {
     }
   }
   const geometry::TetMesh merged = deformable::mergeTetMeshes(parts, std::vector<Vec3>(parts.size(), Vec3::Zero()));
-  std::vector<std::unique_ptr<contact::LevelSet>> levelSets; // the rigid bodies' (before the body: they outlive it)
   const double h = std::cbrt(merged.totalVolume() / static_cast<double>(merged.tets.size()));
-  deformable::DeformableBody body(
+  setup.body = std::make_unique<deformable::DeformableBody>(
       deformable::makeDeformableMesh(merged, scene.quadratic ? deformable::ElementOrder::Quadratic
                                                              : deformable::ElementOrder::Linear,
                                      "deform scene"),
-      bodySettings(scene, h), o.scene);
+      bodySettings(scene, h), source);
+  deformable::DeformableBody& body = *setup.body;
   std::vector<Vec3> velocity(body.nodeCount(), Vec3::Zero());
   std::size_t element = 0;
   for (std::size_t k = 0; k < parts.size(); ++k) {
@@ -243,6 +226,65 @@ void runDeform(const DeformRequest& o) {
     }
   }
   body.setVelocities(velocity);
+  return setup;
+}
+
+/// The run log's closing lines: time, cost, the extremes, the rigid bodies' loads, the outputs.
+void logFinish(const std::shared_ptr<spdlog::logger>& log, const deformable::DeformableBody& body,
+               const deformable::StressHistory& history, const DeformSetup& setup, const io::DeformableScene& scene,
+               const DeformRigidPack* pack, double wall, const fs::path& out) {
+  const auto& e = history.extremes();
+  const auto& times = body.stepTimes();
+  log->info("finished: t = {} s in {} steps, {:.1f} s of wall time (element forces {:.1f} s, nodal sums with "
+            "contact {:.1f} s, update {:.1f} s)",
+            body.time(), body.steps(), wall, times.elementForces, times.gather, times.update);
+  log->info("largest tension sigma_1 {:.4g} MPa at t = {:.4g} s (body '{}', element {}); largest sigma_1 - sigma_3 "
+            "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
+            1e-6 * e.tension.value, e.tension.time, setup.partOfElementName[e.tension.element], e.tension.element,
+            1e-6 * e.differential.value, e.differential.time, 1e-6 * e.vonMises.value);
+  if (pack) pack->logEnd(log);
+  for (std::size_t k = 0; !pack && k < body.obstacleLoads().size(); ++k) {
+    const Vec3& f = body.obstacleLoads()[k].force;
+    log->info("rigid body '{}' carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", scene.rigidBodies[k].part.name,
+              f.x(), f.y(), f.z());
+  }
+  log->info("outputs: {} (ParaView), {}, {}, {}", (out / "frames.pvd").string(), (out / "stress_history.csv").string(),
+            (out / "summary.json").string(), (out / "checkpoint.bin").string());
+}
+
+/// The output folder made (frames/ in it), the previous log kept on a restart; refuses a restart
+/// without a checkpoint.
+void prepareOutput(const fs::path& out, const DeformRequest& o) {
+  if (o.restart && !fs::exists(out / "checkpoint.bin")) {
+    core::failInput((out / "checkpoint.bin").string(), "no checkpoint to continue from; run without --restart first");
+  }
+  if (o.restart) keepPreviousLog(out / "run.log");
+  std::error_code ec;
+  fs::create_directories(out / "frames", ec);
+  if (ec) {
+    core::failInput(out.string(), "cannot create the output folder ({}); set output.folder in {} or --output to a "
+                                  "writable place", ec.message(), o.scene);
+  }
+}
+
+void runDeform(const DeformRequest& o) {
+  io::DeformableScene scene = io::readDeformableScene(o.scene);
+  if (o.durationGiven) scene.duration = o.duration;
+  if (!o.output.empty()) scene.output = fs::absolute(o.output);
+  const fs::path out = scene.output;
+  const fs::path checkpoint = out / "checkpoint.bin";
+  const fs::path historyFile = out / "stress_history.csv";
+  const fs::path pvd = out / "frames.pvd";
+  prepareOutput(out, o);
+  const core::ScopedLogFile logFile((out / "run.log").string());
+  auto log = core::logger("deform");
+  log->info("{}", core::buildInfo());
+  log->info("deform {} -> {}{}", o.scene, out.string(), o.restart ? " (restart)" : "");
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+
+  std::vector<std::unique_ptr<contact::LevelSet>> levelSets; // the fixed rigid bodies' (before the body: they outlive it)
+  const DeformSetup setup = buildBody(scene, o.scene, log);
+  deformable::DeformableBody& body = *setup.body;
   // Moving rigid bodies: a World of them all, the body advancing inside its step; else fixed obstacles.
   const std::unique_ptr<DeformRigidPack> pack = DeformRigidPack::make(scene, body, out, log);
   if (!pack && !scene.rigidBodies.empty()) body.setObstacles(rigidObstacles(scene, levelSets, log));
@@ -277,7 +319,7 @@ void runDeform(const DeformRequest& o) {
   };
   const auto save = [&] { // the checkpoint last: a stop in between leaves outputs ahead of it, not behind
     history.writeCsv(historyFile);
-    writeSummary(out / "summary.json", body, history, partOfElementName);
+    writeSummary(out / "summary.json", body, history, setup.partOfElementName);
     if (pack) pack->stage();
     deformable::writeDeformableCheckpoint(body, checkpoint); // the commit point (DeformRigidPack.hpp)
     if (pack) pack->commit();
@@ -319,24 +361,8 @@ void runDeform(const DeformRequest& o) {
   // the same steps as one that went through (--restart is bit-identical, the history included).
   writeFrame();
   save();
-  const auto& e = history.extremes();
-  const auto& times = body.stepTimes();
-  log->info("finished: t = {} s in {} steps, {:.1f} s of wall time (element forces {:.1f} s, nodal sums with "
-            "contact {:.1f} s, update {:.1f} s)",
-            body.time(), body.steps(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-            times.elementForces, times.gather, times.update);
-  log->info("largest tension sigma_1 {:.4g} MPa at t = {:.4g} s (body '{}', element {}); largest sigma_1 - sigma_3 "
-            "{:.4g} MPa at t = {:.4g} s; largest von Mises {:.4g} MPa",
-            1e-6 * e.tension.value, e.tension.time, partOfElementName[e.tension.element], e.tension.element,
-            1e-6 * e.differential.value, e.differential.time, 1e-6 * e.vonMises.value);
-  if (pack) pack->logEnd(log);
-  for (std::size_t k = 0; !pack && k < body.obstacleLoads().size(); ++k) {
-    const Vec3& f = body.obstacleLoads()[k].force;
-    log->info("rigid body '{}' carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", scene.rigidBodies[k].part.name,
-              f.x(), f.y(), f.z());
-  }
-  log->info("outputs: {} (ParaView), {}, {}, {}", pvd.string(), historyFile.string(), (out / "summary.json").string(),
-            checkpoint.string());
+  logFinish(log, body, history, setup, scene, pack.get(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), out);
 }
 
 } // namespace

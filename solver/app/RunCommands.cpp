@@ -279,9 +279,8 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   return c.applicationState == contactModel;
 }
 
-} // namespace
-
-void runScene(const RunRequest& o) {
+/// The scene of a run: read with --set, then --duration, --storm and -o applied.
+io::Scene readRunScene(const RunRequest& o) {
   if (o.threads < 0) {
     core::failInput("--threads", "{}: give a positive number of threads, or 0 for OpenMP's default", o.threads);
   }
@@ -299,14 +298,16 @@ void runScene(const RunRequest& o) {
   if (!o.output.empty()) {
     scene.output.folder = fs::absolute(o.output);
   }
+  return scene;
+}
+
+/// The checkpoint a restart continues from, read before anything in the folder changes (a refused
+/// restart leaves the run as it was), and the previous log kept; then the output folder made.
+std::optional<simulation::Checkpoint> openRunFolder(const io::Scene& scene, const RunRequest& o,
+                                                    const std::string& fingerprint, const std::string& identity) {
   const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
-  const fs::path runLog = scene.output.folder / "run.log";
-  // What the run computes, to recognise its checkpoints: duration and output settings excluded.
-  const std::string identity = simulation::sceneIdentity(scene);
-  const std::string fingerprint = simulation::fingerprintOf(identity);
   std::optional<simulation::Checkpoint> restart;
   if (o.restart) {
-    // Read before anything in the folder changes: a refused restart leaves the run as it was.
     restart = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
     if (!restart->stopReason.empty()) {
       core::failInput(checkpointPath.string(),
@@ -314,7 +315,7 @@ void runScene(const RunRequest& o) {
                       "which cannot be continued; fix the cause and start the run anew",
                       restart->stopReason);
     }
-    keepPreviousLog(runLog);
+    keepPreviousLog(scene.output.folder / "run.log");
   }
   std::error_code ec;
   fs::create_directories(scene.output.folder, ec);
@@ -323,8 +324,227 @@ void runScene(const RunRequest& o) {
                                                   "--output to a writable place",
                     ec.message(), scene.sourceName);
   }
+  return restart;
+}
+
+/// The World's first state: a fresh run's (the placed state or the scene's positions, refused when
+/// bodies lie inside each other, simulation/Interpenetration.hpp), or the checkpoint's.
+void startWorld(const io::Scene& scene, const simulation::BuiltScene& built,
+                const std::optional<simulation::Checkpoint>& restart, const std::shared_ptr<spdlog::logger>& log) {
+  simulation::World& world = *built.world;
+  if (!restart) {
+    if (!scene.initialState.empty()) {
+      const bool contacts = startFromInitialState(scene, world);
+      log->info("started from the placed state {} ({} as the placement left them)", scene.initialState.string(),
+                contacts ? "positions, contacts and their friction springs" : "positions and velocities");
+    }
+    // Bodies inside each other would run silently to the end. A restart continues a state that
+    // was checked when its run started.
+    const simulation::InterpenetrationReport overlaps = simulation::measureInterpenetration(world, built.planes);
+    log->info("{}", simulation::describeInterpenetration(overlaps));
+    try {
+      simulation::refuseInterpenetration(overlaps, scene.sourceName);
+    } catch (const core::InputError& e) {
+      log->error("{}", e.what()); // the run log says why the run did not start
+      throw;
+    }
+    return;
+  }
+  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  try {
+    world.restoreState(restart->state);
+  } catch (const core::InputError& e) {
+    core::failInput(checkpointPath.string(), "{}", e.what());
+  }
+  if (buildWithoutThreads(restart->build) != buildWithoutThreads(core::buildInfo())) {
+    log->warn("{} was written by {}; this is {}: the continued run may differ in the last bits from an "
+              "uninterrupted run of either",
+              checkpointPath.string(), restart->build, core::buildInfo());
+  }
+  log->info("restarted from t = {} s (step {}) of {}", world.time(), world.stepCount(), checkpointPath.string());
+  if (world.time() >= scene.duration - 0.5 * world.timeStep()) {
+    log->warn("the checkpoint is at t = {} s, not before the duration {} s: nothing to run (give a longer "
+              "--duration to extend the run)",
+              world.time(), scene.duration);
+  }
+}
+
+/// What the stepping loop counted, for the closing lines of the log.
+struct RunTally {
+  std::uint64_t firstStep = 0;
+  double maxOverlap = 0.0;         ///< deepest overlap seen (unit: m)
+  std::size_t movable = 0;         ///< bodies that are not fixed
+  double awakeBodySteps = 0.0;     ///< body-steps integrated
+  double movableBodySteps = 0.0;   ///< body-steps of movable bodies, asleep or not
+  std::size_t domainExits = 0;     ///< bodies that left the static domain
+  bool stopped = false;            ///< by SIGINT or SIGTERM
+};
+
+/// When the run's checkpoints are taken: every interval of simulated time and of wall time.
+struct CheckpointPlan {
+  double every = 0.0;       ///< simulated time between checkpoints (unit: s); 0 = none
+  double wallSeconds = 0.0; ///< wall time between checkpoints (unit: s); 0 = none
+  /// Checkpoint k is due at k x interval (simulated), like the outputs; taken at the first step
+  /// after that at which bodies.nc is flushed (RunOutputs::flushed), which is within the interval.
+  [[nodiscard]] long nextIndex(double t) const {
+    return every > 0.0 ? static_cast<long>(std::floor(t / every + 1e-9)) + 1 : LONG_MAX;
+  }
+};
+
+/// Step the World to the end of the run or to a stop signal: outputs, checkpoints on their plan,
+/// the domain watch, progress lines. SimulationError passes through.
+RunTally stepToEnd(const io::Scene& scene, const simulation::BuiltScene& built, simulation::RunOutputs& outputs,
+                   const RunCheckpoints& checkpoints, const CheckpointPlan& plan, simulation::DomainWatch& domainWatch,
+                   const StopSignals& signals, bool restarted, const std::shared_ptr<spdlog::logger>& log) {
+  simulation::World& world = *built.world;
+  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const double dt = world.timeStep();
+  const double end = scene.duration;
+  RunTally tally;
+  tally.firstStep = world.stepCount();
+  // What the scene did not compute: body-steps of movable bodies spent asleep (fixed bodies, such
+  // as a frozen rock underlayer, never cost a step and are not counted).
+  for (simulation::BodyId b = 0; b < world.bodies().size(); ++b)
+    if (world.bodies().motionType(b) != dynamics::MotionType::Static) ++tally.movable;
+  const auto start = Clock::now();
+  auto lastReport = start;
+  auto lastCheckpoint = start;
+  const auto wallSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  long nextCheckpoint = plan.nextIndex(world.time());
+  // A new run's first record shows the forces of the initial state (contacts, hydrodynamic
+  // loads); the first step would compute the same ones, so this changes nothing else. The
+  // outputs of the start (a restart's were written before its checkpoint, at this step).
+  if (!restarted) {
+    world.evaluateContacts();
+    outputs.update(world);
+  }
+  // Same end test as World::advanceTo: the last step lands within half a step of the end.
+  while (world.time() < end - 0.5 * dt) {
+    world.step();
+    outputs.update(world);
+    tally.maxOverlap = std::max(tally.maxOverlap, world.lastStep().maxOverlap);
+    tally.awakeBodySteps += static_cast<double>(world.bodies().awakeBodies().size());
+    tally.movableBodySteps += static_cast<double>(tally.movable);
+    for (const simulation::DomainExit& e : domainWatch.update(world))
+      if (++tally.domainExits <= kLoggedDomainExits) log->warn("{}", domainWatch.describe(world, e));
+    if (signals.received() != 0) {
+      tally.stopped = true;
+      break;
+    }
+    const bool due = (plan.every > 0.0 && world.time() >= (static_cast<double>(nextCheckpoint) - 1e-9) * plan.every) ||
+                     (plan.wallSeconds > 0.0 && wallSince(lastCheckpoint) >= plan.wallSeconds);
+    if (due && outputs.flushed()) {
+      checkpoints.write(checkpointPath, world, outputs);
+      log->debug("checkpoint at t = {} s (step {})", world.time(), world.stepCount());
+      nextCheckpoint = plan.nextIndex(world.time());
+      lastCheckpoint = Clock::now();
+    }
+    if (wallSince(lastReport) >= kProgressSeconds) {
+      lastReport = Clock::now();
+      const double rate = static_cast<double>(world.stepCount() - tally.firstStep) / wallSince(start);
+      const double remaining = (end - world.time()) / dt / rate;
+      const simulation::StepStatistics& last = world.lastStep();
+      log->info("t = {:.4f} s of {} s ({:.1f} %), {} steps, {:.0f} steps/s, ETA {:.0f} s; contacts {}, candidate "
+                "pairs {} ({} manifolds reused), max overlap {:.3g} m",
+                world.time(), end, 100.0 * world.time() / end, world.stepCount(), rate, remaining,
+                last.contactPoints, last.candidatePairs, last.reusedPairs, tally.maxOverlap);
+    }
+  }
+  return tally;
+}
+
+/// A run stopped by a guard rail: the state at the stop (CSV and a checkpoint for inspection),
+/// logged and printed; exits 3.
+[[noreturn]] void stopOnError(const simulation::SimulationError& e, const io::Scene& scene,
+                              const simulation::BuiltScene& built, simulation::RunOutputs& outputs,
+                              const RunCheckpoints& checkpoints, const std::shared_ptr<spdlog::logger>& log) {
+  const fs::path state = scene.output.folder / "state_at_error.csv";
+  const fs::path errorCheckpoint = scene.output.folder / "checkpoint_at_error.nc";
+  const fs::path runLog = scene.output.folder / "run.log";
+  log->error("the simulation stopped after {} steps: {}", built.world->stepCount(), e.what());
+  writeStateCsv(state, scene, built);
+  std::string saved = state.string();
+  try {
+    checkpoints.write(errorCheckpoint, *built.world, outputs, e.what());
+    saved += ", " + errorCheckpoint.string();
+  } catch (const core::InputError& writeError) {
+    log->error("{}", writeError.what()); // the stop itself is the news: report it regardless
+  }
+  log->error("state at the stop written to {}; run log {}", saved, runLog.string());
+  log->flush();
+  std::cerr << fmt::format("error: {}: the simulation stopped: {}\n(state at the stop: {}; run log: {})\n",
+                           scene.sourceName, e.what(), saved, runLog.string());
+  throw CLI::RuntimeError(3);
+}
+
+/// A run stopped by SIGINT or SIGTERM: the outputs closed without a final frame (the restarted run
+/// writes the next scheduled one), a checkpoint, and the command that continues; exits 130.
+[[noreturn]] void stopOnSignal(const RunRequest& o, const io::Scene& scene, const simulation::World& world,
+                               simulation::RunOutputs& outputs, const RunCheckpoints& checkpoints, int signal,
+                               const std::shared_ptr<spdlog::logger>& log) {
+  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  outputs.close();
+  checkpoints.write(checkpointPath, world, outputs);
+  std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
+                                  o.output.empty() ? std::string() : " -o " + o.output);
+  if (!o.stormFile.empty()) again += " --storm " + o.stormFile;
+  if (o.variabilitySeed) again += fmt::format(" --variability-seed {}", *o.variabilitySeed);
+  for (const std::string& set : o.sets) again += " --set " + set;
+  log->warn("stopped by {} at t = {} s (step {}); checkpoint written to {}; continue with: {}", signalName(signal),
+            world.time(), world.stepCount(), checkpointPath.string(), again);
+  log->flush();
+  std::cerr << fmt::format("{}: stopped by {} at t = {} s; checkpoint written to {}\ncontinue with: {}\n",
+                           scene.sourceName, signalName(signal), world.time(), checkpointPath.string(), again);
+  throw CLI::RuntimeError(kExitStopped);
+}
+
+/// The run log's closing lines: steps and wall time, energy and overlap, what slept, domain exits,
+/// the load stages' summaries, the step's profile (printed with --profile), the files written.
+void logRunEnd(const RunRequest& o, const io::Scene& scene, const simulation::World& world,
+               const simulation::RunOutputs& outputs, const simulation::DomainWatch& domainWatch,
+               const RunTally& tally, double wall, bool restarted, const std::shared_ptr<spdlog::logger>& log) {
+  const double dt = world.timeStep();
+  const std::uint64_t steps = world.stepCount() - tally.firstStep;
+  log->info("finished: t = {:.6g} s in {} steps of {:.4g} s{}, wall time {:.2f} s ({:.0f} steps/s)", world.time(),
+            world.stepCount(), dt, restarted ? fmt::format(" ({} since the restart)", steps) : std::string(), wall,
+            static_cast<double>(steps) / std::max(wall, 1e-9));
+  log->info("final kinetic energy {:.6g} J; deepest overlap seen {:.4g} m", world.bodies().totalKineticEnergy(),
+            tally.maxOverlap);
+  if (tally.movableBodySteps > 0.0)
+    log->info("computed: {} of {} bodies movable ({} fixed, never stepped); asleep {:.1f} % of the movable "
+              "body-steps (on average {:.1f} awake)",
+              tally.movable, world.bodies().size(), world.bodies().size() - tally.movable,
+              100.0 * (1.0 - tally.awakeBodySteps / tally.movableBodySteps),
+              tally.awakeBodySteps / static_cast<double>(steps));
+  if (tally.domainExits > 0)
+    log->warn("{} bodies left the static domain in this run{} ({} outside it at the end): they fell off the edge of "
+              "the scene's unbounded items",
+              tally.domainExits,
+              tally.domainExits > kLoggedDomainExits ? fmt::format(" (the first {} logged)", kLoggedDomainExits) : "",
+              domainWatch.outsideCount());
+  for (const auto& stage : world.loadStages())
+    if (const std::string s = stage->summary(); !s.empty()) log->info("{}", s);
+  // The step's stages (World::profile): where the wall time of the stepping went.
+  const std::string profile = world.profile().table(steps);
+  log->info("time step by stage ({} solver, {} steps):\n{}",
+            world.settings().solver == simulation::ContactSolverKind::Constraint ? "constraint" : "penalty", steps,
+            profile);
+  if (o.profile) std::cout << profile << std::flush;
+  log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
+            (scene.output.folder / "final_state.csv").string(), (scene.output.folder / "checkpoint.nc").string());
+}
+
+} // namespace
+
+void runScene(const RunRequest& o) {
+  io::Scene scene = readRunScene(o);
+  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  // What the run computes, to recognise its checkpoints: duration and output settings excluded.
+  const std::string identity = simulation::sceneIdentity(scene);
+  const std::string fingerprint = simulation::fingerprintOf(identity);
+  const std::optional<simulation::Checkpoint> restart = openRunFolder(scene, o, fingerprint, identity);
   // The file sink first, then the build line again: the run log must start with it.
-  const core::ScopedLogFile logFile(runLog.string());
+  const core::ScopedLogFile logFile((scene.output.folder / "run.log").string());
   auto log = core::logger("run");
   log->info("{}", core::buildInfo());
   log->info("run {} -> {}{}", o.scene, scene.output.folder.string(), o.restart ? " (restart)" : "");
@@ -341,42 +561,7 @@ void runScene(const RunRequest& o) {
     log->info("{}", hydro);
   }
   log->info("built in {:.2f} s", std::chrono::duration<double>(Clock::now() - buildStart).count());
-  if (!restart && !scene.initialState.empty()) {
-    const bool contacts = startFromInitialState(scene, world);
-    log->info("started from the placed state {} ({} as the placement left them)", scene.initialState.string(),
-              contacts ? "positions, contacts and their friction springs" : "positions and velocities");
-  }
-  if (!restart) {
-    // A fresh run starts from the scene's positions (or the placed state): bodies inside each
-    // other would run silently to the end (simulation/Interpenetration.hpp). A restart continues
-    // a state that was checked when its run started.
-    const simulation::InterpenetrationReport overlaps = simulation::measureInterpenetration(world, built.planes);
-    log->info("{}", simulation::describeInterpenetration(overlaps));
-    try {
-      simulation::refuseInterpenetration(overlaps, scene.sourceName);
-    } catch (const core::InputError& e) {
-      log->error("{}", e.what()); // the run log says why the run did not start
-      throw;
-    }
-  }
-  if (restart) {
-    try {
-      world.restoreState(restart->state);
-    } catch (const core::InputError& e) {
-      core::failInput(checkpointPath.string(), "{}", e.what());
-    }
-    if (buildWithoutThreads(restart->build) != buildWithoutThreads(core::buildInfo())) {
-      log->warn("{} was written by {}; this is {}: the continued run may differ in the last bits from an "
-                "uninterrupted run of either",
-                checkpointPath.string(), restart->build, core::buildInfo());
-    }
-    log->info("restarted from t = {} s (step {}) of {}", world.time(), world.stepCount(), checkpointPath.string());
-    if (world.time() >= scene.duration - 0.5 * world.timeStep()) {
-      log->warn("the checkpoint is at t = {} s, not before the duration {} s: nothing to run (give a longer "
-                "--duration to extend the run)",
-                world.time(), scene.duration);
-    }
-  }
+  startWorld(scene, built, restart, log);
   const std::optional<simulation::OutputSchedule> resume =
       restart ? std::optional<simulation::OutputSchedule>(restart->outputs) : std::nullopt;
   simulation::RunOutputs outputs(scene, built, {commandLineOf(o), o.scene, sceneSets(o)}, resume,
@@ -384,157 +569,33 @@ void runScene(const RunRequest& o) {
   log->info("outputs in {}: bodies.pvd (VTK every {} s), bodies.nc (series every {} s), final_state.csv",
             scene.output.folder.string(), scene.output.vtkInterval, scene.output.seriesInterval);
   const RunCheckpoints checkpoints(fingerprint, identity, world);
-  const double checkpointEvery = scene.output.checkpointInterval;
-  const double checkpointWallSeconds = 60.0 * scene.output.checkpointWallMinutes;
+  const CheckpointPlan plan{scene.output.checkpointInterval, 60.0 * scene.output.checkpointWallMinutes};
   std::string when;
-  if (checkpointEvery > 0.0) {
-    when += fmt::format("every {} s of simulated time, ", checkpointEvery);
-  }
-  if (checkpointWallSeconds > 0.0) {
-    when += fmt::format("every {} min of wall time, ", scene.output.checkpointWallMinutes);
-  }
+  if (plan.every > 0.0) when += fmt::format("every {} s of simulated time, ", plan.every);
+  if (plan.wallSeconds > 0.0) when += fmt::format("every {} min of wall time, ", scene.output.checkpointWallMinutes);
   log->info("checkpoints to {}: {}at the end and when stopped by SIGINT or SIGTERM", checkpointPath.string(), when);
-
-  const double dt = world.timeStep();
-  log->info("{}", simulation::describeOutputTiming(scene.output, dt));
-  const double end = scene.duration;
-  const std::uint64_t firstStep = world.stepCount();
-  double maxOverlap = 0.0;
-  // What the scene did not compute: body-steps of movable bodies spent asleep (fixed bodies, such
-  // as a frozen rock underlayer, never cost a step and are not counted).
-  std::size_t movable = 0;
-  for (simulation::BodyId b = 0; b < world.bodies().size(); ++b)
-    if (world.bodies().motionType(b) != dynamics::MotionType::Static) ++movable;
-  double awakeBodySteps = 0.0, movableBodySteps = 0.0;
-  const auto start = Clock::now();
-  auto lastReport = start;
-  auto lastCheckpoint = start;
-  const auto wallSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  // Checkpoint k is due at k x interval (simulated), like the outputs; taken at the first step
-  // after that at which bodies.nc is flushed (RunOutputs::flushed), which is within the interval.
-  const auto nextCheckpointIndex = [checkpointEvery](double t) {
-    return checkpointEvery > 0.0 ? static_cast<long>(std::floor(t / checkpointEvery + 1e-9)) + 1 : LONG_MAX;
-  };
-  long nextCheckpoint = nextCheckpointIndex(world.time());
+  log->info("{}", simulation::describeOutputTiming(scene.output, world.timeStep()));
   simulation::DomainWatch domainWatch(built.domain, world);
   if (domainWatch.outsideCount() > 0)
     log->warn("{} bodies are outside the static domain at the start (t = {} s): they left it before, or the scene "
               "puts them beyond its unbounded items' edges",
               domainWatch.outsideCount(), world.time());
-  std::size_t domainExits = 0;
-  bool stopped = false;
   StopSignals signals;
+  const auto start = Clock::now();
+  RunTally tally;
   try {
-    // A new run's first record shows the forces of the initial state (contacts, hydrodynamic
-    // loads); the first step would compute the same ones, so this changes nothing else.
-    if (!restart) {
-      world.evaluateContacts();
-    }
-    // The outputs of the start (a restart's were written before its checkpoint, at this step).
-    if (!restart) outputs.update(world);
-    // Same end test as World::advanceTo: the last step lands within half a step of the end.
-    while (world.time() < end - 0.5 * dt) {
-      world.step();
-      outputs.update(world);
-      maxOverlap = std::max(maxOverlap, world.lastStep().maxOverlap);
-      awakeBodySteps += static_cast<double>(world.bodies().awakeBodies().size());
-      movableBodySteps += static_cast<double>(movable);
-      for (const simulation::DomainExit& e : domainWatch.update(world))
-        if (++domainExits <= kLoggedDomainExits) log->warn("{}", domainWatch.describe(world, e));
-      if (signals.received() != 0) {
-        stopped = true;
-        break;
-      }
-      const bool due = (checkpointEvery > 0.0 &&
-                        world.time() >= (static_cast<double>(nextCheckpoint) - 1e-9) * checkpointEvery) ||
-                       (checkpointWallSeconds > 0.0 && wallSince(lastCheckpoint) >= checkpointWallSeconds);
-      if (due && outputs.flushed()) {
-        checkpoints.write(checkpointPath, world, outputs);
-        log->debug("checkpoint at t = {} s (step {})", world.time(), world.stepCount());
-        nextCheckpoint = nextCheckpointIndex(world.time());
-        lastCheckpoint = Clock::now();
-      }
-      if (wallSince(lastReport) >= kProgressSeconds) {
-        lastReport = Clock::now();
-        const double wall = wallSince(start);
-        const double rate = static_cast<double>(world.stepCount() - firstStep) / wall;
-        const double remaining = (end - world.time()) / dt / rate;
-        const simulation::StepStatistics& last = world.lastStep();
-        log->info("t = {:.4f} s of {} s ({:.1f} %), {} steps, {:.0f} steps/s, ETA {:.0f} s; contacts {}, candidate "
-                  "pairs {} ({} manifolds reused), max overlap {:.3g} m",
-                  world.time(), end, 100.0 * world.time() / end, world.stepCount(), rate, remaining,
-                  last.contactPoints, last.candidatePairs, last.reusedPairs, maxOverlap);
-      }
-    }
+    tally = stepToEnd(scene, built, outputs, checkpoints, plan, domainWatch, signals, restart.has_value(), log);
   } catch (const simulation::SimulationError& e) {
-    const fs::path state = scene.output.folder / "state_at_error.csv";
-    const fs::path errorCheckpoint = scene.output.folder / "checkpoint_at_error.nc";
-    log->error("the simulation stopped after {} steps: {}", world.stepCount(), e.what());
-    writeStateCsv(state, scene, built);
-    std::string saved = state.string();
-    try {
-      checkpoints.write(errorCheckpoint, world, outputs, e.what());
-      saved += ", " + errorCheckpoint.string();
-    } catch (const core::InputError& writeError) {
-      log->error("{}", writeError.what()); // the stop itself is the news: report it regardless
-    }
-    log->error("state at the stop written to {}; run log {}", saved, runLog.string());
-    log->flush();
-    std::cerr << fmt::format("error: {}: the simulation stopped: {}\n(state at the stop: {}; run log: {})\n",
-                             scene.sourceName, e.what(), saved, runLog.string());
-    throw CLI::RuntimeError(3);
+    stopOnError(e, scene, built, outputs, checkpoints, log);
   }
-  if (stopped) {
-    // The outputs are closed without a final frame: the restarted run writes the next scheduled one.
-    outputs.close();
-    checkpoints.write(checkpointPath, world, outputs);
-    std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
-                                    o.output.empty() ? std::string() : " -o " + o.output);
-    if (!o.stormFile.empty()) again += " --storm " + o.stormFile;
-    if (o.variabilitySeed) again += fmt::format(" --variability-seed {}", *o.variabilitySeed);
-    for (const std::string& set : o.sets) again += " --set " + set;
-    log->warn("stopped by {} at t = {} s (step {}); checkpoint written to {}; continue with: {}",
-              signalName(signals.received()), world.time(), world.stepCount(), checkpointPath.string(), again);
-    log->flush();
-    std::cerr << fmt::format("{}: stopped by {} at t = {} s; checkpoint written to {}\ncontinue with: {}\n",
-                             scene.sourceName, signalName(signals.received()), world.time(), checkpointPath.string(),
-                             again);
-    throw CLI::RuntimeError(kExitStopped);
-  }
+  if (tally.stopped) stopOnSignal(o, scene, world, outputs, checkpoints, signals.received(), log);
   outputs.finish(world);
   checkpoints.write(checkpointPath, world, outputs);
-  const double wall = wallSince(start);
-  const fs::path finalState = scene.output.folder / "final_state.csv";
-  writeStateCsv(finalState, scene, built);
-  const std::uint64_t steps = world.stepCount() - firstStep;
-  log->info("finished: t = {:.6g} s in {} steps of {:.4g} s{}, wall time {:.2f} s ({:.0f} steps/s)", world.time(),
-            world.stepCount(), dt, restart ? fmt::format(" ({} since the restart)", steps) : std::string(), wall,
-            static_cast<double>(steps) / std::max(wall, 1e-9));
-  log->info("final kinetic energy {:.6g} J; deepest overlap seen {:.4g} m", world.bodies().totalKineticEnergy(),
-            maxOverlap);
-  if (movableBodySteps > 0.0)
-    log->info("computed: {} of {} bodies movable ({} fixed, never stepped); asleep {:.1f} % of the movable "
-              "body-steps (on average {:.1f} awake)",
-              movable, world.bodies().size(), world.bodies().size() - movable,
-              100.0 * (1.0 - awakeBodySteps / movableBodySteps), awakeBodySteps / static_cast<double>(steps));
-  if (domainExits > 0)
-    log->warn("{} bodies left the static domain in this run{} ({} outside it at the end): they fell off the edge of "
-              "the scene's unbounded items",
-              domainExits, domainExits > kLoggedDomainExits ? fmt::format(" (the first {} logged)", kLoggedDomainExits) : "",
-              domainWatch.outsideCount());
-  for (const auto& stage : world.loadStages())
-    if (const std::string s = stage->summary(); !s.empty()) log->info("{}", s);
-  // The step's stages (World::profile): where the wall time of the stepping went.
-  const std::string profile = world.profile().table(steps);
-  log->info("time step by stage ({} solver, {} steps):\n{}",
-            world.settings().solver == simulation::ContactSolverKind::Constraint ? "constraint" : "penalty", steps,
-            profile);
-  if (o.profile) std::cout << profile << std::flush;
-  log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
-            finalState.string(), checkpointPath.string());
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  writeStateCsv(scene.output.folder / "final_state.csv", scene, built);
+  logRunEnd(o, scene, world, outputs, domainWatch, tally, wall, restart.has_value(), log);
   log->flush();
 }
-
 
 void addSetOption(CLI::App& command, std::vector<std::string>& sets) {
   command.add_option("--set", sets,
