@@ -68,6 +68,28 @@ double signedVolume(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& 
 }
 
 
+/// For each part, the parts whose boxes meet its box: a sweep along x over the boxes (empty boxes
+/// have no neighbours).
+std::vector<std::vector<std::int32_t>> neighbourParts(const std::vector<Eigen::AlignedBox3d>& partBoxes) {
+  std::vector<std::vector<std::int32_t>> neighbours(partBoxes.size());
+  std::vector<std::int32_t> order;
+  for (std::size_t p = 0; p < partBoxes.size(); ++p) {
+    if (!partBoxes[p].isEmpty()) order.push_back(static_cast<std::int32_t>(p));
+  }
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return partBoxes[a].min().x() < partBoxes[b].min().x() || (partBoxes[a].min().x() == partBoxes[b].min().x() && a < b);
+  });
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    for (std::size_t j = i + 1; j < order.size() && partBoxes[order[j]].min().x() <= partBoxes[order[i]].max().x(); ++j) {
+      if (partBoxes[order[i]].intersects(partBoxes[order[j]])) {
+        neighbours[order[i]].push_back(order[j]);
+        neighbours[order[j]].push_back(order[i]);
+      }
+    }
+  }
+  return neighbours;
+}
+
 } // namespace
 
 BodyContact::BodyContact(const DeformableMesh& mesh, const std::vector<SurfaceTriangle>& triangles, double penalty,
@@ -152,24 +174,7 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
   // The parts whose boxes meet each part's box (sweep along x): a tet or triangle of part q lies
   // in q's box, so only those parts' boxes can meet it. Many parts (a rock dump) then cost their
   // neighbours, not every part; the skipped set is the same as testing every part.
-  std::vector<std::vector<std::int32_t>> neighbours(partCount_);
-  {
-    std::vector<std::int32_t> order;
-    for (std::size_t p = 0; p < partCount_; ++p) {
-      if (!partBoxes[p].isEmpty()) order.push_back(static_cast<std::int32_t>(p));
-    }
-    std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-      return partBoxes[a].min().x() < partBoxes[b].min().x() || (partBoxes[a].min().x() == partBoxes[b].min().x() && a < b);
-    });
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      for (std::size_t j = i + 1; j < order.size() && partBoxes[order[j]].min().x() <= partBoxes[order[i]].max().x(); ++j) {
-        if (partBoxes[order[i]].intersects(partBoxes[order[j]])) {
-          neighbours[order[i]].push_back(order[j]);
-          neighbours[order[j]].push_back(order[i]);
-        }
-      }
-    }
-  }
+  const std::vector<std::vector<std::int32_t>> neighbours = neighbourParts(partBoxes);
   const auto nearOtherPart = [&partBoxes, &neighbours](const Eigen::AlignedBox3d& box, std::int32_t part) {
     for (const std::int32_t p : neighbours[static_cast<std::size_t>(part)]) {
       if (partBoxes[p].intersects(box)) {
@@ -266,6 +271,12 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
   for (const std::size_t c : candidatePairs) {
     stats.candidatePairs += c;
   }
+  applyPairs(all, forces, contactor, stats);
+  return stats;
+}
+
+void BodyContact::applyPairs(const std::vector<PairForce>& all, std::vector<Vec3>& forces, ContactorLoads* contactor,
+                             BodyContactStats& stats) const {
   for (const PairForce& f : all) {
     ++stats.touchingPairs;
     stats.normalForce += f.contactorShare.sum();
@@ -286,7 +297,6 @@ BodyContactStats BodyContact::add(const std::vector<Vec3>& x, const std::vector<
       forces[c[n]] += f.targetShare[n] * f.normal;
     }
   }
-  return stats;
 }
 
 bool BodyContact::pairForce(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x,

@@ -107,6 +107,10 @@ private:
     Eigen::Vector3d contactorShare = Eigen::Vector3d::Zero();
     Eigen::Vector4d targetShare = Eigen::Vector4d::Zero();
   };
+  /// Add the records' forces in their order (serial: the same sums for any thread count), with
+  /// the contactor side if asked, and count them.
+  void applyPairs(const std::vector<PairForce>& all, std::vector<Vec3>& forces, ContactorLoads* contactor,
+                  BodyContactStats& stats) const;
   /// The pair's forces into `out`; false when they are zero (not touching, or an inverted element).
   bool pairForce(std::size_t triangle, std::size_t target, const std::vector<Vec3>& x, const std::vector<Vec3>& v,
                  PairForce& out) const;
