@@ -317,10 +317,262 @@ std::string sceneFingerprint(const io::Scene& scene) { return fingerprintOf(scen
 // Write
 // ---------------------------------------------------------------------------------------------
 
-void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
+namespace {
+
+/// The netCDF ids of a checkpoint's variables (-1: left out).
+struct CheckpointVars {
+  int position = -1, orientation = -1, velocity = -1, momentum = -1, force = -1, torque = -1;
+  int externalForce = -1, externalTorque = -1, sleepLoad = -1;
+  std::vector<int> stages; ///< one per load stage
+  int cache = -1, motion = -1, rest = -1, count = -1, maxForce = -1, names = -1;
+  std::size_t nameLength = 1;
+  int first = -1, second = -1, key = -1, stretch = -1, sliding = -1, normalImpulse = -1, tangentImpulse = -1;
+  int identity = -1, application = -1;
+};
+
+/// The global attributes of a checkpoint (define mode).
+void putCheckpointAttributes(const Writer& w, int ncid, const Checkpoint& c) {
+  const WorldState& s = c.state;
+  w.text(ncid, NC_GLOBAL, "title", "armour checkpoint");
+  w.text(ncid, NC_GLOBAL, "comment",
+         "Complete dynamic state of an armour run, for `armour run <scene> --restart` (docs/output-files.md, "
+         "docs/user-guide.md). Units: time, last_vtk_time and last_series_time in s; energy_minimum, external_work "
+         "and energy_peak in J. Shapes, materials and static geometry come from the scene, identified by "
+         "scene_fingerprint.");
+  w.integer(ncid, kVersionAttribute, kCheckpointFormatVersion);
+  w.text(ncid, NC_GLOBAL, "armour_build", core::buildInfo());
+  w.text(ncid, NC_GLOBAL, "scene_fingerprint", c.sceneFingerprint);
+  w.number(ncid, "time", s.time);
+  const unsigned long long steps = s.steps;
+  w.check(nc_put_att_ulonglong(ncid, NC_GLOBAL, "steps", NC_UINT64, 1, &steps), "write an attribute");
+  w.integer(ncid, "forces_ready", s.forcesReady ? 1 : 0);
+  w.number(ncid, "energy_minimum", s.energyMinimum);
+  w.number(ncid, "external_work", s.externalWork);
+  w.number(ncid, "energy_peak", s.energyPeak);
+  w.integer(ncid, "energy_started", s.energyStarted ? 1 : 0);
+  w.number(ncid, "last_vtk_time", c.outputs.lastVtkTime);
+  w.number(ncid, "last_series_time", c.outputs.lastSeriesTime);
+  if (!c.stopReason.empty()) {
+    w.text(ncid, NC_GLOBAL, "stop_reason", c.stopReason);
+  }
+}
+
+/// The dimensions and variables of a checkpoint, with their attributes (define mode).
+CheckpointVars defineCheckpointVars(const Writer& w, int ncid, const Checkpoint& c) {
   const WorldState& s = c.state;
   const std::size_t n = s.bodies.size();
   const std::size_t m = s.contacts.size();
+  CheckpointVars v;
+  // A dimension of length 0 is unlimited in netCDF: a state without contacts keeps a valid file.
+  int bodyDim = -1, contactDim = -1, vecDim = -1, quatDim = -1;
+  w.check(nc_def_dim(ncid, "body", n, &bodyDim), "define the body dimension");
+  w.check(nc_def_dim(ncid, "contact", m, &contactDim), "define the contact dimension");
+  w.check(nc_def_dim(ncid, "vec", 3, &vecDim), "define the vec dimension");
+  w.check(nc_def_dim(ncid, "quat", 4, &quatDim), "define the quat dimension");
+
+  const auto define = [&](const char* name, nc_type type, std::initializer_list<int> dims, const char* units,
+                          const std::string& longName) {
+    int var = -1;
+    const std::vector<int> ids(dims);
+    w.check(nc_def_var(ncid, name, type, static_cast<int>(ids.size()), ids.data(), &var), "define a variable");
+    if (units != nullptr) {
+      w.text(ncid, var, "units", units);
+    }
+    w.text(ncid, var, "long_name", longName);
+    return var;
+  };
+  v.position = define("position", NC_DOUBLE, {bodyDim, vecDim}, "m", "centre of mass position");
+  v.orientation = define("orientation", NC_DOUBLE, {bodyDim, quatDim}, "1",
+                                 "orientation quaternion (w, x, y, z), principal body frame to world");
+  v.velocity = define("velocity", NC_DOUBLE, {bodyDim, vecDim}, "m s-1", "centre of mass velocity");
+  v.momentum = define("angular_momentum", NC_DOUBLE, {bodyDim, vecDim}, "kg m2 s-1",
+                              "angular momentum about the centre of mass, world frame");
+  v.force = define("force", NC_DOUBLE, {bodyDim, vecDim}, "N",
+                           "force of the last force evaluation (contacts and external loads; gravity excluded)");
+  v.torque = define("torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
+                            "torque about the centre of mass of the last force evaluation, world frame");
+  v.externalForce = define("external_force", NC_DOUBLE, {bodyDim, vecDim}, "N",
+                                   "load stages' force of the last force evaluation (hydrodynamics)");
+  v.externalTorque = define("external_torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
+                                    "load stages' torque about the centre of mass, last force evaluation");
+  v.sleepLoad = define("sleep_load", NC_DOUBLE, {bodyDim, vecDim}, "N",
+                               "load stages' force when the body fell asleep (wake logic)");
+  // Each load stage's own state (held loads, update times) as a flat array named after the stage.
+  std::vector<int> stageVars;
+  for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
+    int dim = -1;
+    const std::string dimName = fmt::format("load_stage_{}_length", k);
+    w.check(nc_def_dim(ncid, dimName.c_str(), std::max<std::size_t>(1, s.loadStages[k].second.size()), &dim),
+            "define a load stage dimension");
+    const std::string varName = fmt::format("load_stage_{}", k);
+    v.stages.push_back(define(varName.c_str(), NC_DOUBLE, {dim}, nullptr, "state of a load stage"));
+    w.text(ncid, v.stages.back(), "stage_name", s.loadStages[k].first);
+    const auto used = static_cast<unsigned long long>(s.loadStages[k].second.size());
+    w.check(nc_put_att_ulonglong(ncid, v.stages.back(), "used_length", NC_UINT64, 1, &used), "write an attribute");
+  }
+  // The constraint solver's reused manifolds (flat; absent when empty).
+  if (!s.manifoldCache.empty()) {
+    int dim = -1;
+    w.check(nc_def_dim(ncid, "manifold_cache_length", s.manifoldCache.size(), &dim), "define a dimension");
+    v.cache = define("manifold_cache", NC_DOUBLE, {dim}, nullptr,
+                      "constraint solver: reused contact patches per pair (World::saveManifoldCache)");
+  }
+  for (int var : {v.position, v.velocity, v.momentum, v.force, v.torque, v.externalForce, v.externalTorque, v.sleepLoad}) {
+    w.text(ncid, var, "comment", kAxesComment);
+  }
+  v.motion = define("motion_type", NC_UBYTE, {bodyDim}, "1", "motion type");
+  const std::array<unsigned char, 3> flags{0, 1, 2};
+  w.check(nc_put_att_uchar(ncid, v.motion, "flag_values", NC_UBYTE, flags.size(), flags.data()), "write an attribute");
+  w.text(ncid, v.motion, "flag_meanings", "static dynamic sleeping");
+  v.rest = define("rest_time", NC_DOUBLE, {bodyDim}, "s", "time at rest so far (sleep logic)");
+  v.count = define("contact_count", NC_INT, {bodyDim}, "1", "engaged contact points, last force evaluation");
+  v.maxForce = define("max_contact_force", NC_DOUBLE, {bodyDim}, "N",
+                              "largest contact point force, last force evaluation");
+  if (!c.bodyNames.empty()) {
+    for (const auto& name : c.bodyNames) {
+      v.nameLength = std::max(v.nameLength, name.size());
+    }
+    int strDim = -1;
+    w.check(nc_def_dim(ncid, "name_strlen", v.nameLength, &strDim), "define the name_strlen dimension");
+    v.names = define("body_name", NC_CHAR, {bodyDim, strDim}, nullptr, "body name (for reading; not used on restart)");
+  }
+  v.first = define("contact_first", NC_UINT, {contactDim}, "1", "friction spring: index of the first body");
+  v.second = define("contact_second", NC_UINT, {contactDim}, "1", "friction spring: the other side");
+  w.text(ncid, v.second, "comment", kSecondComment);
+  // levelset: the surface sample; fdem: contactor element << 16 | target element, or the surface
+  // face index against static geometry.
+  v.key = define("contact_key", NC_UINT, {contactDim}, "1", "friction spring: surface sample or element pair");
+  w.text(ncid, v.key, "comment", kKeyComment);
+  v.stretch = define("contact_stretch", NC_DOUBLE, {contactDim, vecDim}, "m",
+                             "friction spring: tangential stretch, world frame");
+  v.sliding =
+      define("contact_sliding", NC_UBYTE, {contactDim}, "1", "friction spring: sliding (1) or stuck (0)");
+  // The constraint solver's warm start (contact.solver: constraint); zero under the penalty solver.
+  v.normalImpulse = define("contact_normal_impulse", NC_DOUBLE, {contactDim}, "N s",
+                                   "constraint solver: normal impulse per substep (warm start)");
+  v.tangentImpulse = define("contact_tangent_impulse", NC_DOUBLE, {contactDim, vecDim}, "N s",
+                                    "constraint solver: friction impulse per substep, world frame (warm start)");
+  // Optional texts: a char variable over its own length dimension, left out when empty.
+  const auto defineText = [&](const char* name, const char* dimName, const std::string& text, const char* longName) {
+    if (text.empty()) return -1;
+    int dim = -1;
+    w.check(nc_def_dim(ncid, dimName, text.size(), &dim), "define a dimension");
+    return define(name, NC_CHAR, {dim}, nullptr, longName);
+  };
+  v.identity = defineText("scene_identity", "identity_length", c.sceneIdentity,
+                                  "the resolved scene that scene_fingerprint hashes (duration and output settings "
+                                  "left out)");
+  v.application = defineText("application_state", "application_state_length", c.applicationState,
+                                     "the command's own state around the World (armour place: placement progress; "
+                                     "a placed state: the contact model its contacts belong to)");
+  return v;
+}
+
+/// The values of a checkpoint's variables (data mode).
+void putCheckpointVars(const Writer& w, int ncid, const CheckpointVars& v, const Checkpoint& c) {
+  const WorldState& s = c.state;
+  const std::size_t n = s.bodies.size();
+  const std::size_t m = s.contacts.size();
+  const auto put = [&](int var, const auto& values) {
+    if (!values.empty()) {
+      w.check(nc_put_var(ncid, var, values.data()), "write a variable");
+    }
+  };
+  if (n > 0) {
+    std::vector<double> buffer(4 * n);
+    const auto putVec = [&](int var, Vec3 BodyState::*member) {
+      buffer.resize(3 * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& v = s.bodies[i].*member;
+        std::copy(v.data(), v.data() + 3, buffer.begin() + static_cast<std::ptrdiff_t>(3 * i));
+      }
+      put(var, buffer);
+    };
+    putVec(v.position, &BodyState::position);
+    putVec(v.velocity, &BodyState::velocity);
+    putVec(v.momentum, &BodyState::angularMomentum);
+    putVec(v.force, &BodyState::force);
+    putVec(v.torque, &BodyState::torque);
+    putVec(v.externalForce, &BodyState::externalForce);
+    putVec(v.externalTorque, &BodyState::externalTorque);
+    putVec(v.sleepLoad, &BodyState::sleepLoad);
+    buffer.resize(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& q = s.bodies[i].orientation;
+      buffer[4 * i] = q.w();
+      buffer[4 * i + 1] = q.x();
+      buffer[4 * i + 2] = q.y();
+      buffer[4 * i + 3] = q.z();
+    }
+    put(v.orientation, buffer);
+    std::vector<unsigned char> motions(n);
+    std::vector<double> rests(n), forces(n);
+    std::vector<int> counts(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      motions[i] = static_cast<unsigned char>(s.bodies[i].motion);
+      rests[i] = s.bodies[i].restTime;
+      counts[i] = s.bodies[i].contactCount;
+      forces[i] = s.bodies[i].maxContactForce;
+    }
+    put(v.motion, motions);
+    put(v.rest, rests);
+    put(v.count, counts);
+    put(v.maxForce, forces);
+    if (v.names >= 0) {
+      std::vector<char> text(n * v.nameLength, '\0');
+      for (std::size_t i = 0; i < n; ++i) {
+        std::copy(c.bodyNames[i].begin(), c.bodyNames[i].end(),
+                  text.begin() + static_cast<std::ptrdiff_t>(i * v.nameLength));
+      }
+      put(v.names, text);
+    }
+  }
+  if (v.cache >= 0) {
+    put(v.cache, s.manifoldCache);
+  }
+  for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
+    std::vector<double> values = s.loadStages[k].second;
+    values.resize(std::max<std::size_t>(1, values.size()), 0.0);
+    put(v.stages[k], values);
+  }
+  if (m > 0) {
+    std::vector<unsigned> firsts(m), seconds(m), keys(m);
+    std::vector<double> stretches(3 * m);
+    std::vector<unsigned char> slides(m);
+    std::vector<double> normals(m), tangents(3 * m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const ContactPointState& p = s.contacts[k];
+      normals[k] = p.normalImpulse;
+      std::copy(p.tangentImpulse.data(), p.tangentImpulse.data() + 3,
+                tangents.begin() + static_cast<std::ptrdiff_t>(3 * k));
+      firsts[k] = p.first;
+      seconds[k] = p.second;
+      keys[k] = p.key;
+      std::copy(p.stretch.data(), p.stretch.data() + 3, stretches.begin() + static_cast<std::ptrdiff_t>(3 * k));
+      slides[k] = p.sliding ? 1 : 0;
+    }
+    // The unlimited dimension (m = 0) is never written to, so nc_put_var's whole-variable
+    // shape is the fixed length m here.
+    put(v.first, firsts);
+    put(v.second, seconds);
+    put(v.key, keys);
+    put(v.stretch, stretches);
+    put(v.sliding, slides);
+    put(v.normalImpulse, normals);
+    put(v.tangentImpulse, tangents);
+  }
+  if (v.identity >= 0) {
+    put(v.identity, c.sceneIdentity);
+  }
+  if (v.application >= 0) {
+    put(v.application, c.applicationState);
+  }
+}
+
+} // namespace
+
+void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
+  const std::size_t n = c.state.bodies.size();
   if (!c.bodyNames.empty() && c.bodyNames.size() != n) {
     throw std::logic_error(fmt::format("writeCheckpoint: {} body names for {} bodies", c.bodyNames.size(), n));
   }
@@ -329,231 +581,10 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
   int ncid = -1;
   try {
     w.check(nc_create(tmp.c_str(), NC_NETCDF4 | NC_CLOBBER, &ncid), "create the file");
-
-    w.text(ncid, NC_GLOBAL, "title", "armour checkpoint");
-    w.text(ncid, NC_GLOBAL, "comment",
-           "Complete dynamic state of an armour run, for `armour run <scene> --restart` (docs/output-files.md, "
-           "docs/user-guide.md). Units: time, last_vtk_time and last_series_time in s; energy_minimum, external_work "
-           "and energy_peak in J. Shapes, materials and static geometry come from the scene, identified by "
-           "scene_fingerprint.");
-    w.integer(ncid, kVersionAttribute, kCheckpointFormatVersion);
-    w.text(ncid, NC_GLOBAL, "armour_build", core::buildInfo());
-    w.text(ncid, NC_GLOBAL, "scene_fingerprint", c.sceneFingerprint);
-    w.number(ncid, "time", s.time);
-    const unsigned long long steps = s.steps;
-    w.check(nc_put_att_ulonglong(ncid, NC_GLOBAL, "steps", NC_UINT64, 1, &steps), "write an attribute");
-    w.integer(ncid, "forces_ready", s.forcesReady ? 1 : 0);
-    w.number(ncid, "energy_minimum", s.energyMinimum);
-    w.number(ncid, "external_work", s.externalWork);
-    w.number(ncid, "energy_peak", s.energyPeak);
-    w.integer(ncid, "energy_started", s.energyStarted ? 1 : 0);
-    w.number(ncid, "last_vtk_time", c.outputs.lastVtkTime);
-    w.number(ncid, "last_series_time", c.outputs.lastSeriesTime);
-    if (!c.stopReason.empty()) {
-      w.text(ncid, NC_GLOBAL, "stop_reason", c.stopReason);
-    }
-
-    // A dimension of length 0 is unlimited in netCDF: a state without contacts keeps a valid file.
-    int bodyDim = -1, contactDim = -1, vecDim = -1, quatDim = -1;
-    w.check(nc_def_dim(ncid, "body", n, &bodyDim), "define the body dimension");
-    w.check(nc_def_dim(ncid, "contact", m, &contactDim), "define the contact dimension");
-    w.check(nc_def_dim(ncid, "vec", 3, &vecDim), "define the vec dimension");
-    w.check(nc_def_dim(ncid, "quat", 4, &quatDim), "define the quat dimension");
-
-    const auto define = [&](const char* name, nc_type type, std::initializer_list<int> dims, const char* units,
-                            const std::string& longName) {
-      int var = -1;
-      const std::vector<int> ids(dims);
-      w.check(nc_def_var(ncid, name, type, static_cast<int>(ids.size()), ids.data(), &var), "define a variable");
-      if (units != nullptr) {
-        w.text(ncid, var, "units", units);
-      }
-      w.text(ncid, var, "long_name", longName);
-      return var;
-    };
-    const int position = define("position", NC_DOUBLE, {bodyDim, vecDim}, "m", "centre of mass position");
-    const int orientation = define("orientation", NC_DOUBLE, {bodyDim, quatDim}, "1",
-                                   "orientation quaternion (w, x, y, z), principal body frame to world");
-    const int velocity = define("velocity", NC_DOUBLE, {bodyDim, vecDim}, "m s-1", "centre of mass velocity");
-    const int momentum = define("angular_momentum", NC_DOUBLE, {bodyDim, vecDim}, "kg m2 s-1",
-                                "angular momentum about the centre of mass, world frame");
-    const int force = define("force", NC_DOUBLE, {bodyDim, vecDim}, "N",
-                             "force of the last force evaluation (contacts and external loads; gravity excluded)");
-    const int torque = define("torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
-                              "torque about the centre of mass of the last force evaluation, world frame");
-    const int externalForce = define("external_force", NC_DOUBLE, {bodyDim, vecDim}, "N",
-                                     "load stages' force of the last force evaluation (hydrodynamics)");
-    const int externalTorque = define("external_torque", NC_DOUBLE, {bodyDim, vecDim}, "N m",
-                                      "load stages' torque about the centre of mass, last force evaluation");
-    const int sleepLoad = define("sleep_load", NC_DOUBLE, {bodyDim, vecDim}, "N",
-                                 "load stages' force when the body fell asleep (wake logic)");
-    // Each load stage's own state (held loads, update times) as a flat array named after the stage.
-    std::vector<int> stageVars;
-    for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
-      int dim = -1;
-      const std::string dimName = fmt::format("load_stage_{}_length", k);
-      w.check(nc_def_dim(ncid, dimName.c_str(), std::max<std::size_t>(1, s.loadStages[k].second.size()), &dim),
-              "define a load stage dimension");
-      const std::string varName = fmt::format("load_stage_{}", k);
-      stageVars.push_back(define(varName.c_str(), NC_DOUBLE, {dim}, nullptr, "state of a load stage"));
-      w.text(ncid, stageVars.back(), "stage_name", s.loadStages[k].first);
-      const auto used = static_cast<unsigned long long>(s.loadStages[k].second.size());
-      w.check(nc_put_att_ulonglong(ncid, stageVars.back(), "used_length", NC_UINT64, 1, &used), "write an attribute");
-    }
-    // The constraint solver's reused manifolds (flat; absent when empty).
-    int cacheVar = -1;
-    if (!s.manifoldCache.empty()) {
-      int dim = -1;
-      w.check(nc_def_dim(ncid, "manifold_cache_length", s.manifoldCache.size(), &dim), "define a dimension");
-      cacheVar = define("manifold_cache", NC_DOUBLE, {dim}, nullptr,
-                        "constraint solver: reused contact patches per pair (World::saveManifoldCache)");
-    }
-    for (int var : {position, velocity, momentum, force, torque, externalForce, externalTorque, sleepLoad}) {
-      w.text(ncid, var, "comment", kAxesComment);
-    }
-    const int motion = define("motion_type", NC_UBYTE, {bodyDim}, "1", "motion type");
-    const std::array<unsigned char, 3> flags{0, 1, 2};
-    w.check(nc_put_att_uchar(ncid, motion, "flag_values", NC_UBYTE, flags.size(), flags.data()), "write an attribute");
-    w.text(ncid, motion, "flag_meanings", "static dynamic sleeping");
-    const int rest = define("rest_time", NC_DOUBLE, {bodyDim}, "s", "time at rest so far (sleep logic)");
-    const int count = define("contact_count", NC_INT, {bodyDim}, "1", "engaged contact points, last force evaluation");
-    const int maxForce = define("max_contact_force", NC_DOUBLE, {bodyDim}, "N",
-                                "largest contact point force, last force evaluation");
-    int names = -1;
-    std::size_t nameLength = 1;
-    if (!c.bodyNames.empty()) {
-      for (const auto& name : c.bodyNames) {
-        nameLength = std::max(nameLength, name.size());
-      }
-      int strDim = -1;
-      w.check(nc_def_dim(ncid, "name_strlen", nameLength, &strDim), "define the name_strlen dimension");
-      names = define("body_name", NC_CHAR, {bodyDim, strDim}, nullptr, "body name (for reading; not used on restart)");
-    }
-    const int first = define("contact_first", NC_UINT, {contactDim}, "1", "friction spring: index of the first body");
-    const int second = define("contact_second", NC_UINT, {contactDim}, "1", "friction spring: the other side");
-    w.text(ncid, second, "comment", kSecondComment);
-    // levelset: the surface sample; fdem: contactor element << 16 | target element, or the surface
-    // face index against static geometry.
-    const int key = define("contact_key", NC_UINT, {contactDim}, "1", "friction spring: surface sample or element pair");
-    w.text(ncid, key, "comment", kKeyComment);
-    const int stretch = define("contact_stretch", NC_DOUBLE, {contactDim, vecDim}, "m",
-                               "friction spring: tangential stretch, world frame");
-    const int sliding =
-        define("contact_sliding", NC_UBYTE, {contactDim}, "1", "friction spring: sliding (1) or stuck (0)");
-    // The constraint solver's warm start (contact.solver: constraint); zero under the penalty solver.
-    const int normalImpulse = define("contact_normal_impulse", NC_DOUBLE, {contactDim}, "N s",
-                                     "constraint solver: normal impulse per substep (warm start)");
-    const int tangentImpulse = define("contact_tangent_impulse", NC_DOUBLE, {contactDim, vecDim}, "N s",
-                                      "constraint solver: friction impulse per substep, world frame (warm start)");
-    // Optional texts: a char variable over its own length dimension, left out when empty.
-    const auto defineText = [&](const char* name, const char* dimName, const std::string& text, const char* longName) {
-      if (text.empty()) return -1;
-      int dim = -1;
-      w.check(nc_def_dim(ncid, dimName, text.size(), &dim), "define a dimension");
-      return define(name, NC_CHAR, {dim}, nullptr, longName);
-    };
-    const int identity = defineText("scene_identity", "identity_length", c.sceneIdentity,
-                                    "the resolved scene that scene_fingerprint hashes (duration and output settings "
-                                    "left out)");
-    const int application = defineText("application_state", "application_state_length", c.applicationState,
-                                       "the command's own state around the World (armour place: placement progress; "
-                                       "a placed state: the contact model its contacts belong to)");
+    putCheckpointAttributes(w, ncid, c);
+    const CheckpointVars vars = defineCheckpointVars(w, ncid, c);
     w.check(nc_enddef(ncid), "finish the header");
-
-    const auto put = [&](int var, const auto& values) {
-      if (!values.empty()) {
-        w.check(nc_put_var(ncid, var, values.data()), "write a variable");
-      }
-    };
-    if (n > 0) {
-      std::vector<double> buffer(4 * n);
-      const auto putVec = [&](int var, Vec3 BodyState::*member) {
-        buffer.resize(3 * n);
-        for (std::size_t i = 0; i < n; ++i) {
-          const Vec3& v = s.bodies[i].*member;
-          std::copy(v.data(), v.data() + 3, buffer.begin() + static_cast<std::ptrdiff_t>(3 * i));
-        }
-        put(var, buffer);
-      };
-      putVec(position, &BodyState::position);
-      putVec(velocity, &BodyState::velocity);
-      putVec(momentum, &BodyState::angularMomentum);
-      putVec(force, &BodyState::force);
-      putVec(torque, &BodyState::torque);
-      putVec(externalForce, &BodyState::externalForce);
-      putVec(externalTorque, &BodyState::externalTorque);
-      putVec(sleepLoad, &BodyState::sleepLoad);
-      buffer.resize(4 * n);
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto& q = s.bodies[i].orientation;
-        buffer[4 * i] = q.w();
-        buffer[4 * i + 1] = q.x();
-        buffer[4 * i + 2] = q.y();
-        buffer[4 * i + 3] = q.z();
-      }
-      put(orientation, buffer);
-      std::vector<unsigned char> motions(n);
-      std::vector<double> rests(n), forces(n);
-      std::vector<int> counts(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        motions[i] = static_cast<unsigned char>(s.bodies[i].motion);
-        rests[i] = s.bodies[i].restTime;
-        counts[i] = s.bodies[i].contactCount;
-        forces[i] = s.bodies[i].maxContactForce;
-      }
-      put(motion, motions);
-      put(rest, rests);
-      put(count, counts);
-      put(maxForce, forces);
-      if (names >= 0) {
-        std::vector<char> text(n * nameLength, '\0');
-        for (std::size_t i = 0; i < n; ++i) {
-          std::copy(c.bodyNames[i].begin(), c.bodyNames[i].end(),
-                    text.begin() + static_cast<std::ptrdiff_t>(i * nameLength));
-        }
-        put(names, text);
-      }
-    }
-    if (cacheVar >= 0) {
-      put(cacheVar, s.manifoldCache);
-    }
-    for (std::size_t k = 0; k < s.loadStages.size(); ++k) {
-      std::vector<double> values = s.loadStages[k].second;
-      values.resize(std::max<std::size_t>(1, values.size()), 0.0);
-      put(stageVars[k], values);
-    }
-    if (m > 0) {
-      std::vector<unsigned> firsts(m), seconds(m), keys(m);
-      std::vector<double> stretches(3 * m);
-      std::vector<unsigned char> slides(m);
-      std::vector<double> normals(m), tangents(3 * m);
-      for (std::size_t k = 0; k < m; ++k) {
-        const ContactPointState& p = s.contacts[k];
-        normals[k] = p.normalImpulse;
-        std::copy(p.tangentImpulse.data(), p.tangentImpulse.data() + 3,
-                  tangents.begin() + static_cast<std::ptrdiff_t>(3 * k));
-        firsts[k] = p.first;
-        seconds[k] = p.second;
-        keys[k] = p.key;
-        std::copy(p.stretch.data(), p.stretch.data() + 3, stretches.begin() + static_cast<std::ptrdiff_t>(3 * k));
-        slides[k] = p.sliding ? 1 : 0;
-      }
-      // The unlimited dimension (m = 0) is never written to, so nc_put_var's whole-variable
-      // shape is the fixed length m here.
-      put(first, firsts);
-      put(second, seconds);
-      put(key, keys);
-      put(stretch, stretches);
-      put(sliding, slides);
-      put(normalImpulse, normals);
-      put(tangentImpulse, tangents);
-    }
-    if (identity >= 0) {
-      put(identity, c.sceneIdentity);
-    }
-    if (application >= 0) {
-      put(application, c.applicationState);
-    }
+    putCheckpointVars(w, ncid, vars, c);
     const int status = nc_close(ncid);
     ncid = -1;
     w.check(status, "finish");
@@ -572,14 +603,11 @@ void writeCheckpoint(const fs::path& path, const Checkpoint& c) {
 // Read
 // ---------------------------------------------------------------------------------------------
 
-Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& expect) {
-  // A damaged file can crash libhdf5 inside nc_open: read it whole in a child first (one fork per
-  // restart; core/ProbeInChild.hpp). In the child this call reads it without a second probe.
-  core::probeInChild(path.string(), {"checkpoint", "restart from another checkpoint, or start the run anew without "
-                                                   "--restart"},
-                     [&] { (void)readCheckpoint(path, expect); });
-  const Reader r(path);
-  Checkpoint c;
+namespace {
+
+/// The global attributes: format version, build, fingerprint, stop reason, time, steps, the energy
+/// monitor and the output schedule, refused when not finite.
+void readCheckpointGlobals(const Reader& r, Checkpoint& c) {
   if (!r.hasAttribute(kVersionAttribute)) {
     r.fail("is a netCDF file but not an armour checkpoint (no global attribute '{}'); give the checkpoint.nc that "
            "armour run wrote into the run's output folder",
@@ -620,68 +648,11 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     }
   }
 
-  int bodyDim = -1, contactDim = -1, vecDim = -1, quatDim = -1;
-  const std::size_t n = r.dimension("body", bodyDim);
-  const std::size_t m = r.dimension("contact", contactDim);
-  if (const std::size_t v = r.dimension("vec", vecDim); v != 3) {
-    r.damaged("dimension 'vec'", fmt::format("is {}, expected 3", v));
-  }
-  if (const std::size_t q = r.dimension("quat", quatDim); q != 4) {
-    r.damaged("dimension 'quat'", fmt::format("is {}, expected 4", q));
-  }
+}
 
-  // The scene first: a changed scene explains any mismatch that follows.
+/// Each load stage's own state and the constraint solver's reused manifolds (both optional).
+void readLoadStages(const Reader& r, WorldState& s) {
   int unused = -1;
-  // Optional texts: absent = "".
-  const auto readText = [&](const char* name, const char* dimName) {
-    std::string out;
-    if (nc_inq_varid(r.id(), name, &unused) != NC_NOERR) return out;
-    int dim = -1;
-    const std::size_t length = r.dimension(dimName, dim);
-    std::vector<char> text;
-    r.get(name, r.variable(name, NC_CHAR, {dim}), length, text);
-    out.assign(text.begin(), text.end());
-    return out;
-  };
-  c.sceneIdentity = readText("scene_identity", "identity_length");
-  c.applicationState = readText("application_state", "application_state_length");
-  if (!expect.sceneFingerprint.empty() && expect.sceneFingerprint != c.sceneFingerprint) {
-    std::string change = "(the checkpoint does not hold the scene text, so the change cannot be named)";
-    if (!c.sceneIdentity.empty() && !expect.sceneIdentity.empty()) {
-      const auto [was, is] = firstDifference(c.sceneIdentity, expect.sceneIdentity);
-      change = fmt::format("first difference: the run had '{}', the scene now has '{}'", was, is);
-    }
-    r.fail("scene_fingerprint {} does not match the scene ({}): the scene changed since the run started; {}. A "
-           "restart may change the duration and the output settings only: undo the change, or start a new run "
-           "without --restart (into another output folder to keep this one)",
-           c.sceneFingerprint, expect.sceneFingerprint, change);
-  }
-  if (expect.bodies > 0 && n != expect.bodies) {
-    r.fail("dimension 'body' = {}: the checkpoint holds {} bodies but the scene builds {}; restart with the scene "
-           "the run was started with, or start a new run without --restart",
-           n, n, expect.bodies);
-  }
-
-  std::vector<double> positions, orientations, velocities, momenta, forces, torques, rests, maxForces;
-  std::vector<unsigned char> motions;
-  std::vector<int> counts;
-  r.get("position", r.variable("position", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, positions);
-  r.get("orientation", r.variable("orientation", NC_DOUBLE, {bodyDim, quatDim}), 4 * n, orientations);
-  r.get("velocity", r.variable("velocity", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, velocities);
-  r.get("angular_momentum", r.variable("angular_momentum", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, momenta);
-  r.get("force", r.variable("force", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, forces);
-  r.get("torque", r.variable("torque", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, torques);
-  r.get("motion_type", r.variable("motion_type", NC_UBYTE, {bodyDim}), n, motions);
-  r.get("rest_time", r.variable("rest_time", NC_DOUBLE, {bodyDim}), n, rests);
-  r.get("contact_count", r.variable("contact_count", NC_INT, {bodyDim}), n, counts);
-  r.get("max_contact_force", r.variable("max_contact_force", NC_DOUBLE, {bodyDim}), n, maxForces);
-  // Load-stage data: absent in checkpoints of runs without load stages (zero then).
-  std::vector<double> externalForces(3 * n, 0.0), externalTorques(3 * n, 0.0), sleepLoads(3 * n, 0.0);
-  if (nc_inq_varid(r.id(), "external_force", &unused) == NC_NOERR) {
-    r.get("external_force", r.variable("external_force", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalForces);
-    r.get("external_torque", r.variable("external_torque", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalTorques);
-    r.get("sleep_load", r.variable("sleep_load", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, sleepLoads);
-  }
   for (std::size_t k = 0;; ++k) {
     const std::string varName = fmt::format("load_stage_{}", k);
     if (nc_inq_varid(r.id(), varName.c_str(), &unused) != NC_NOERR) {
@@ -707,6 +678,33 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     int dim = -1;
     const std::size_t length = r.dimension("manifold_cache_length", dim);
     r.get("manifold_cache", r.variable("manifold_cache", NC_DOUBLE, {dim}), length, s.manifoldCache);
+  }
+}
+
+/// The bodies' state and names (dims: body, vec, quat), refused when not finite or not a rotation.
+void readCheckpointBodies(const Reader& r, Checkpoint& c, const std::array<int, 3>& dims, std::size_t n) {
+  const auto [bodyDim, vecDim, quatDim] = dims;
+  WorldState& s = c.state;
+  int unused = -1;
+  std::vector<double> positions, orientations, velocities, momenta, forces, torques, rests, maxForces;
+  std::vector<unsigned char> motions;
+  std::vector<int> counts;
+  r.get("position", r.variable("position", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, positions);
+  r.get("orientation", r.variable("orientation", NC_DOUBLE, {bodyDim, quatDim}), 4 * n, orientations);
+  r.get("velocity", r.variable("velocity", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, velocities);
+  r.get("angular_momentum", r.variable("angular_momentum", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, momenta);
+  r.get("force", r.variable("force", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, forces);
+  r.get("torque", r.variable("torque", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, torques);
+  r.get("motion_type", r.variable("motion_type", NC_UBYTE, {bodyDim}), n, motions);
+  r.get("rest_time", r.variable("rest_time", NC_DOUBLE, {bodyDim}), n, rests);
+  r.get("contact_count", r.variable("contact_count", NC_INT, {bodyDim}), n, counts);
+  r.get("max_contact_force", r.variable("max_contact_force", NC_DOUBLE, {bodyDim}), n, maxForces);
+  // Load-stage data: absent in checkpoints of runs without load stages (zero then).
+  std::vector<double> externalForces(3 * n, 0.0), externalTorques(3 * n, 0.0), sleepLoads(3 * n, 0.0);
+  if (nc_inq_varid(r.id(), "external_force", &unused) == NC_NOERR) {
+    r.get("external_force", r.variable("external_force", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalForces);
+    r.get("external_torque", r.variable("external_torque", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, externalTorques);
+    r.get("sleep_load", r.variable("sleep_load", NC_DOUBLE, {bodyDim, vecDim}), 3 * n, sleepLoads);
   }
   if (nc_inq_varid(r.id(), "body_name", &unused) == NC_NOERR) {
     int strDim = -1;
@@ -766,6 +764,12 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
     }
   }
 
+}
+
+/// The friction springs and warm starts of the contacts (dims: contact, vec), each naming a body.
+void readCheckpointContacts(const Reader& r, WorldState& s, const std::array<int, 2>& dims, std::size_t n,
+                            std::size_t m) {
+  const auto [contactDim, vecDim] = dims;
   std::vector<unsigned> firsts, seconds, keys;
   std::vector<double> stretches;
   std::vector<unsigned char> slides;
@@ -802,6 +806,64 @@ Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& exp
                 fmt::format("names body {}, but there are {} bodies", p.first, n));
     }
   }
+}
+
+} // namespace
+
+Checkpoint readCheckpoint(const fs::path& path, const CheckpointExpectation& expect) {
+  // A damaged file can crash libhdf5 inside nc_open: read it whole in a child first (one fork per
+  // restart; core/ProbeInChild.hpp). In the child this call reads it without a second probe.
+  core::probeInChild(path.string(), {"checkpoint", "restart from another checkpoint, or start the run anew without "
+                                                   "--restart"},
+                     [&] { (void)readCheckpoint(path, expect); });
+  const Reader r(path);
+  Checkpoint c;
+  readCheckpointGlobals(r, c);
+  int bodyDim = -1, contactDim = -1, vecDim = -1, quatDim = -1;
+  const std::size_t n = r.dimension("body", bodyDim);
+  const std::size_t m = r.dimension("contact", contactDim);
+  if (const std::size_t v = r.dimension("vec", vecDim); v != 3) {
+    r.damaged("dimension 'vec'", fmt::format("is {}, expected 3", v));
+  }
+  if (const std::size_t q = r.dimension("quat", quatDim); q != 4) {
+    r.damaged("dimension 'quat'", fmt::format("is {}, expected 4", q));
+  }
+
+  // The scene first: a changed scene explains any mismatch that follows.
+  int unused = -1;
+  // Optional texts: absent = "".
+  const auto readText = [&](const char* name, const char* dimName) {
+    std::string out;
+    if (nc_inq_varid(r.id(), name, &unused) != NC_NOERR) return out;
+    int dim = -1;
+    const std::size_t length = r.dimension(dimName, dim);
+    std::vector<char> text;
+    r.get(name, r.variable(name, NC_CHAR, {dim}), length, text);
+    out.assign(text.begin(), text.end());
+    return out;
+  };
+  c.sceneIdentity = readText("scene_identity", "identity_length");
+  c.applicationState = readText("application_state", "application_state_length");
+  if (!expect.sceneFingerprint.empty() && expect.sceneFingerprint != c.sceneFingerprint) {
+    std::string change = "(the checkpoint does not hold the scene text, so the change cannot be named)";
+    if (!c.sceneIdentity.empty() && !expect.sceneIdentity.empty()) {
+      const auto [was, is] = firstDifference(c.sceneIdentity, expect.sceneIdentity);
+      change = fmt::format("first difference: the run had '{}', the scene now has '{}'", was, is);
+    }
+    r.fail("scene_fingerprint {} does not match the scene ({}): the scene changed since the run started; {}. A "
+           "restart may change the duration and the output settings only: undo the change, or start a new run "
+           "without --restart (into another output folder to keep this one)",
+           c.sceneFingerprint, expect.sceneFingerprint, change);
+  }
+  if (expect.bodies > 0 && n != expect.bodies) {
+    r.fail("dimension 'body' = {}: the checkpoint holds {} bodies but the scene builds {}; restart with the scene "
+           "the run was started with, or start a new run without --restart",
+           n, n, expect.bodies);
+  }
+
+  readCheckpointBodies(r, c, {bodyDim, vecDim, quatDim}, n);
+  readLoadStages(r, c.state);
+  readCheckpointContacts(r, c.state, {contactDim, vecDim}, n, m);
   return c;
 }
 
