@@ -134,13 +134,107 @@ std::string describeContactModel(const ContactSettings& c) {
                      c.fdemElementsPerUnit);
 }
 
+namespace {
+
+/// Appends a line of text and a newline to a description.
+struct LineWriter {
+  std::string& out;
+  void operator()(const std::string& text) const {
+    out += text;
+    out += '\n';
+  }
+};
+
+/// The static geometry's lines of describeScene.
+void describeStatics(const Scene& s, const LineWriter& line) {
+  const auto materialName = [&](std::size_t i) { return i < s.materials.size() ? s.materials[i].name : "?"; };
+  line(fmt::format("static ({}):", s.statics.size()));
+  for (const StaticPlane& p : s.statics.planes)
+    line(fmt::format("  plane {}: point = {} m, normal = {}, material = {}", p.name, vec(p.point), vec(p.normal),
+                     materialName(p.material)));
+  for (const StaticSlope& sl : s.statics.slopes) {
+    line(fmt::format("  slope {}: origin = [{}, {}] m (x, z), tan = {} (angle_deg = {:.6g}, cot = {:.6g}), "
+                     "crest_height = {} m, toe_height = {} m, toe_top_width = {} m, toe_base_width = {} m, "
+                     "material = {}",
+                     sl.name, sl.origin.x(), sl.origin.y(), sl.tanAlpha, std::atan(sl.tanAlpha) * 180.0 / std::numbers::pi,
+                     1.0 / sl.tanAlpha, sl.crestHeight, sl.toeHeight, sl.toeTopWidth, sl.toeBaseWidth,
+                     materialName(sl.material)));
+    if (sl.roughness)
+      line(fmt::format("    roughness: {}, y from {} m", heightField(*sl.roughness), sl.roughness->origin.y()));
+  }
+  for (const StaticHeightField& h : s.statics.heightFields)
+    line(fmt::format("  heightfield {}: origin = {} m, tan = {}, {}, material = {}", h.name, vec(h.field.origin),
+                     h.field.tanAlpha, heightField(h.field), materialName(h.material)));
+  for (const StaticWall& w : s.statics.walls)
+    line(fmt::format("  wall {}: axis = {}, position = {} m, side = {} (normal {}), material = {}", w.name,
+                     w.axis == 0 ? "x" : "y", w.position, w.atMinimum ? "min" : "max", vec(w.normal()),
+                     materialName(w.material)));
+  for (const StaticMesh& m : s.statics.meshes)
+    line(fmt::format("  mesh {}: file = {}, position = {} m, quaternion = {} (euler_deg = {}), scale = {}, "
+                     "material = {}",
+                     m.name, m.file.string(), vec(m.position), quat(m.orientation), eulerDeg(m.orientation), m.scale,
+                     materialName(m.material)));
+}
+
+/// The hydrodynamic loads' lines of describeScene.
+void describeHydro(const hydro::HydroSettings& hydroSettings, const LineWriter& line) {
+  if (!hydroSettings.enabled) {
+    line("hydro: none");
+  } else {
+    const hydro::HydroSettings& h = hydroSettings;
+    line(fmt::format("hydro: bodies = {}", h.bodies));
+    switch (h.model) {
+    case hydro::HydroModel::Storm: {
+      const hydro::StormLoadSettings& st = h.storm;
+      line("  model = storm");
+      line(fmt::format("  file = {}", st.file));
+      line(fmt::format("  offset = [{}, {}] m (the file's x, z of the scene's origin)", st.offsetX, st.offsetZ));
+      line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}, ramp_time = {} s",
+                       st.timeOffset, st.updateInterval,
+                       st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate", st.rampTime));
+      line(fmt::format("  wet_alpha = {} (-), element_size = {} Dn, pressure = {}", st.wetAlpha, st.elementSizePerDn,
+                       st.pressure));
+      // Only when not the default: the checkpoint's scene fingerprint is made from this text, and
+      // checkpoints of porous-bed scenes written before the setting existed must still restart.
+      if (st.bed.kind == hydro::BedKind::Impermeable) {
+        line(fmt::format("  bed = impermeable, bed_level = {} m, bed_tolerance = {} Dn", st.bed.level,
+                         st.bed.toleranceDn));
+      }
+      line(fmt::format("  variability: enabled = {}, seed = {}, patches_per_axis = {}", st.variability.enabled,
+                       st.variability.seed, st.variability.patchesPerAxis));
+      line(fmt::format("  drag: enabled = {}, coefficient = {} (-)", st.drag.enabled, st.drag.coefficient));
+      line(fmt::format("  added_mass: enabled = {}, coefficient = {} (-)", st.addedMass.enabled,
+                       st.addedMass.coefficient));
+      break;
+    }
+    case hydro::HydroModel::Oscillating: {
+      const hydro::OscillatingForceSettings& o = h.oscillating;
+      line("  model = oscillating (seed 001 eq. 1-2)");
+      line(fmt::format("  amplitude = {} N, period = {} s, wave_number = {} 1/m, z_min = {} m, z_swl = {} m, "
+                       "z_max = {} m, waves = {}{}",
+                       o.amplitude, o.period, o.waveNumber, o.zMin, o.zSwl, o.zMax, o.waves,
+                       o.waves > 0 ? "" : " (the whole run)"));
+      break;
+    }
+    case hydro::HydroModel::ShallowWave: {
+      const hydro::ShallowWaveForceSettings& w = h.shallowWave;
+      line("  model = shallow_wave (seed 003 eq. 2)");
+      line(fmt::format("  amplitude = {} N, angular_frequency = {} rad/s, slope angle = {} deg, toe_x = {} m, "
+                       "depth_at_toe = {} m, ray_spacing = {} m{}, exposure_interval = {} s",
+                       w.amplitude, w.angularFrequency, w.slopeAngle * 180.0 / 3.14159265358979323846, w.toeX,
+                       w.depthAtToe, w.raySpacing, w.raySpacing > 0 ? "" : " (Dn / 4)", w.exposureInterval));
+      break;
+    }
+    }
+  }
+}
+
+} // namespace
+
 std::string describeScene(const Scene& s) {
   const auto materialName = [&](std::size_t i) { return i < s.materials.size() ? s.materials[i].name : "?"; };
   std::string out;
-  const auto line = [&out](const std::string& text) {
-    out += text;
-    out += '\n';
-  };
+  const LineWriter line{out};
 
   line(fmt::format("scene {} (from {}, paths relative to {})", s.name, s.sourceName, s.baseDir.string()));
   if (!s.description.empty()) line(fmt::format("  description: {}", s.description));
@@ -221,82 +315,9 @@ std::string describeScene(const Scene& s) {
                      eulerDeg(b.orientation), vec(b.velocity), vec(b.angularVelocity), b.fixed));
   }
 
-  line(fmt::format("static ({}):", s.statics.size()));
-  for (const StaticPlane& p : s.statics.planes)
-    line(fmt::format("  plane {}: point = {} m, normal = {}, material = {}", p.name, vec(p.point), vec(p.normal),
-                     materialName(p.material)));
-  for (const StaticSlope& sl : s.statics.slopes) {
-    line(fmt::format("  slope {}: origin = [{}, {}] m (x, z), tan = {} (angle_deg = {:.6g}, cot = {:.6g}), "
-                     "crest_height = {} m, toe_height = {} m, toe_top_width = {} m, toe_base_width = {} m, "
-                     "material = {}",
-                     sl.name, sl.origin.x(), sl.origin.y(), sl.tanAlpha, std::atan(sl.tanAlpha) * 180.0 / std::numbers::pi,
-                     1.0 / sl.tanAlpha, sl.crestHeight, sl.toeHeight, sl.toeTopWidth, sl.toeBaseWidth,
-                     materialName(sl.material)));
-    if (sl.roughness)
-      line(fmt::format("    roughness: {}, y from {} m", heightField(*sl.roughness), sl.roughness->origin.y()));
-  }
-  for (const StaticHeightField& h : s.statics.heightFields)
-    line(fmt::format("  heightfield {}: origin = {} m, tan = {}, {}, material = {}", h.name, vec(h.field.origin),
-                     h.field.tanAlpha, heightField(h.field), materialName(h.material)));
-  for (const StaticWall& w : s.statics.walls)
-    line(fmt::format("  wall {}: axis = {}, position = {} m, side = {} (normal {}), material = {}", w.name,
-                     w.axis == 0 ? "x" : "y", w.position, w.atMinimum ? "min" : "max", vec(w.normal()),
-                     materialName(w.material)));
-  for (const StaticMesh& m : s.statics.meshes)
-    line(fmt::format("  mesh {}: file = {}, position = {} m, quaternion = {} (euler_deg = {}), scale = {}, "
-                     "material = {}",
-                     m.name, m.file.string(), vec(m.position), quat(m.orientation), eulerDeg(m.orientation), m.scale,
-                     materialName(m.material)));
+  describeStatics(s, line);
 
-  if (!s.hydro.enabled) {
-    line("hydro: none");
-  } else {
-    const hydro::HydroSettings& h = s.hydro;
-    line(fmt::format("hydro: bodies = {}", h.bodies));
-    switch (h.model) {
-    case hydro::HydroModel::Storm: {
-      const hydro::StormLoadSettings& st = h.storm;
-      line("  model = storm");
-      line(fmt::format("  file = {}", st.file));
-      line(fmt::format("  offset = [{}, {}] m (the file's x, z of the scene's origin)", st.offsetX, st.offsetZ));
-      line(fmt::format("  time_offset = {} s, update_interval = {} s, between_updates = {}, ramp_time = {} s",
-                       st.timeOffset, st.updateInterval,
-                       st.betweenUpdates == hydro::BetweenUpdates::Hold ? "hold" : "interpolate", st.rampTime));
-      line(fmt::format("  wet_alpha = {} (-), element_size = {} Dn, pressure = {}", st.wetAlpha, st.elementSizePerDn,
-                       st.pressure));
-      // Only when not the default: the checkpoint's scene fingerprint is made from this text, and
-      // checkpoints of porous-bed scenes written before the setting existed must still restart.
-      if (st.bed.kind == hydro::BedKind::Impermeable) {
-        line(fmt::format("  bed = impermeable, bed_level = {} m, bed_tolerance = {} Dn", st.bed.level,
-                         st.bed.toleranceDn));
-      }
-      line(fmt::format("  variability: enabled = {}, seed = {}, patches_per_axis = {}", st.variability.enabled,
-                       st.variability.seed, st.variability.patchesPerAxis));
-      line(fmt::format("  drag: enabled = {}, coefficient = {} (-)", st.drag.enabled, st.drag.coefficient));
-      line(fmt::format("  added_mass: enabled = {}, coefficient = {} (-)", st.addedMass.enabled,
-                       st.addedMass.coefficient));
-      break;
-    }
-    case hydro::HydroModel::Oscillating: {
-      const hydro::OscillatingForceSettings& o = h.oscillating;
-      line("  model = oscillating (seed 001 eq. 1-2)");
-      line(fmt::format("  amplitude = {} N, period = {} s, wave_number = {} 1/m, z_min = {} m, z_swl = {} m, "
-                       "z_max = {} m, waves = {}{}",
-                       o.amplitude, o.period, o.waveNumber, o.zMin, o.zSwl, o.zMax, o.waves,
-                       o.waves > 0 ? "" : " (the whole run)"));
-      break;
-    }
-    case hydro::HydroModel::ShallowWave: {
-      const hydro::ShallowWaveForceSettings& w = h.shallowWave;
-      line("  model = shallow_wave (seed 003 eq. 2)");
-      line(fmt::format("  amplitude = {} N, angular_frequency = {} rad/s, slope angle = {} deg, toe_x = {} m, "
-                       "depth_at_toe = {} m, ray_spacing = {} m{}, exposure_interval = {} s",
-                       w.amplitude, w.angularFrequency, w.slopeAngle * 180.0 / 3.14159265358979323846, w.toeX,
-                       w.depthAtToe, w.raySpacing, w.raySpacing > 0 ? "" : " (Dn / 4)", w.exposureInterval));
-      break;
-    }
-    }
-  }
+  describeHydro(s.hydro, line);
 
   if (!s.warnings.empty()) {
     line(fmt::format("warnings ({}):", s.warnings.size()));
