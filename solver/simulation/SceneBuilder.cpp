@@ -322,27 +322,18 @@ std::vector<ConvexPiece> heightFieldPieces(const io::StaticHeightField& item, co
   return out;
 }
 
-BuiltScene buildWorld(const io::Scene& scene) {
+namespace {
+
+/// A warning of the build: logged and kept in the BuiltScene.
+void warnBuild(BuiltScene& b, const std::string& text) {
+  core::logger("scene")->warn("{}", text);
+  b.warnings.push_back(text);
+}
+
+/// One World shape per scene shape that a body uses (its bodies share the level set and samples).
+void buildShapes(const io::Scene& scene, BuiltScene& built) {
   auto log = core::logger("scene");
-  const auto warn = [&](BuiltScene& b, const std::string& text) {
-    log->warn("{}", text);
-    b.warnings.push_back(text);
-  };
-  BuiltScene built;
-  built.world = std::make_unique<World>(worldSettings(scene));
   World& world = *built.world;
-
-  for (const io::Material& m : scene.materials) {
-    const std::string item = "material '" + m.name + "'";
-    try {
-      built.materials.push_back(worldMaterial(m, item));
-      world.addMaterial(built.materials.back());
-    } catch (const core::InputError& e) {
-      failItem(scene, item, e);
-    }
-  }
-
-  // One World shape per scene shape that a body uses; its bodies share the level set and samples.
   std::vector<bool> used(scene.shapes.size(), false);
   for (const io::Body& b : scene.bodies) used[b.shape] = true;
   built.shapeOfSceneShape.assign(scene.shapes.size(), std::nullopt);
@@ -351,7 +342,7 @@ BuiltScene buildWorld(const io::Scene& scene) {
     if (!used[i]) {
       // The units of a placement use it once `armour place` adds them.
       if (scene.placement.enabled && spec.name == scene.placement.shape) continue;
-      warn(built, fmt::format("{}: {} is used by no body; not built", scene.sourceName, shapeItem(spec)));
+      warnBuild(built, fmt::format("{}: {} is used by no body; not built", scene.sourceName, shapeItem(spec)));
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -372,7 +363,11 @@ BuiltScene buildWorld(const io::Scene& scene) {
                 model.fdem->reach() / std::cbrt(model.unitMass.volume));
     }
   }
+}
 
+/// The scene's bodies; returns each body's radius (unit: m) for the static domain.
+std::vector<double> buildBodies(const io::Scene& scene, BuiltScene& built) {
+  World& world = *built.world;
   std::vector<double> bodyRadius;
   bodyRadius.reserve(scene.bodies.size());
   for (const io::Body& b : scene.bodies) {
@@ -398,7 +393,12 @@ BuiltScene buildWorld(const io::Scene& scene) {
     }
     bodyRadius.push_back(model.radius * spec.scale);
   }
+  return bodyRadius;
+}
 
+/// The static planes, walls, slopes and height fields, over the static domain.
+void buildStatics(const io::Scene& scene, BuiltScene& built, const std::vector<double>& bodyRadius) {
+  World& world = *built.world;
   built.domain = staticDomain(scene, bodyRadius);
   const StaticDomain& domain = built.domain;
   const auto addPlane = [&](const StaticPlane& p, const std::string& item) {
@@ -429,7 +429,7 @@ BuiltScene buildWorld(const io::Scene& scene) {
     addPlane(slopeSeabed(s, material), "slope '" + s.name + "'");
     for (ConvexPiece& piece : slopePieces(s, domain, material)) built.convexPieces.push_back(std::move(piece));
     if (!hasWalls(1)) {
-      warn(built, fmt::format("{}: slope '{}' is unbounded along y and is built over y in [{:.4g}, {:.4g}] m: a body "
+      warnBuild(built, fmt::format("{}: slope '{}' is unbounded along y and is built over y in [{:.4g}, {:.4g}] m: a body "
                               "beyond falls off its edge; bound the domain with walls on axis y",
                               scene.sourceName, s.name, domain.yMin, domain.yMax));
     }
@@ -439,7 +439,7 @@ BuiltScene buildWorld(const io::Scene& scene) {
       built.convexPieces.push_back(std::move(piece));
     }
     if (!hasWalls(0) || !hasWalls(1)) {
-      warn(built, fmt::format("{}: the plane around heightfield '{}' is built over x in [{:.4g}, {:.4g}] m, y in "
+      warnBuild(built, fmt::format("{}: the plane around heightfield '{}' is built over x in [{:.4g}, {:.4g}] m, y in "
                               "[{:.4g}, {:.4g}] m: a body beyond falls off its edge; bound the domain with walls",
                               scene.sourceName, h.name, domain.xMin, domain.xMax, domain.yMin, domain.yMax));
     }
@@ -451,7 +451,11 @@ BuiltScene buildWorld(const io::Scene& scene) {
       failItem(scene, "static piece '" + piece.name + "'", e);
     }
   }
+}
 
+/// The static meshes: fixed bodies of their own shapes.
+void buildStaticMeshes(const io::Scene& scene, BuiltScene& built) {
+  World& world = *built.world;
   for (const io::StaticMesh& m : scene.statics.meshes) {
     const std::string item = fmt::format("static mesh '{}' ({})", m.name, m.file.string());
     try {
@@ -477,7 +481,29 @@ BuiltScene buildWorld(const io::Scene& scene) {
       failItem(scene, item, e);
     }
   }
+}
 
+} // namespace
+
+BuiltScene buildWorld(const io::Scene& scene) {
+  BuiltScene built;
+  built.world = std::make_unique<World>(worldSettings(scene));
+  World& world = *built.world;
+
+  for (const io::Material& m : scene.materials) {
+    const std::string item = "material '" + m.name + "'";
+    try {
+      built.materials.push_back(worldMaterial(m, item));
+      world.addMaterial(built.materials.back());
+    } catch (const core::InputError& e) {
+      failItem(scene, item, e);
+    }
+  }
+
+  buildShapes(scene, built);
+  const std::vector<double> bodyRadius = buildBodies(scene, built);
+  buildStatics(scene, built, bodyRadius);
+  buildStaticMeshes(scene, built);
   try {
     built.stableTimeStep = world.stableTimeStep();
     built.timeStep = world.timeStep();
