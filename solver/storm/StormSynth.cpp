@@ -181,23 +181,42 @@ StormSynth::StormSynth(const SynthSettings& settings, const std::string& command
   buildHeader(command);
 }
 
+namespace {
+
+void requirePositive(double value, const char* option, const char* what, const char* unit) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    core::failInput(option, "{} {}: {} must be positive and finite", value, unit, what);
+  }
+}
+
+void requireFiniteOption(double value, const char* option, const char* unit) {
+  if (!std::isfinite(value)) {
+    core::failInput(option, "{} {}: give a finite number", value, unit);
+  }
+}
+
+} // namespace
+
 void StormSynth::validate() {
+  validateGrid();
+  const double amplitude = validateWave();
+  validateVariability(amplitude);
+  const SynthSettings& s = settings_;
+  auto log = core::logger("storm");
+  if (ramp_ > s.duration) {
+    log->warn("the ramp-up ({} s) is longer than the storm ({} s): the waves never reach full height", ramp_,
+              s.duration);
+  }
+  records_ = static_cast<std::size_t>(std::floor(s.duration / s.dt + 1e-9)) + 1;
+}
+
+void StormSynth::validateGrid() {
   SynthSettings& s = settings_;
-  auto positive = [](double value, const char* option, const char* what, const char* unit) {
-    if (!(value > 0.0) || !std::isfinite(value)) {
-      core::failInput(option, "{} {}: {} must be positive and finite", value, unit, what);
-    }
-  };
-  auto finite = [](double value, const char* option, const char* unit) {
-    if (!std::isfinite(value)) {
-      core::failInput(option, "{} {}: give a finite number", value, unit);
-    }
-  };
   for (auto [value, option] :
        {std::pair{s.xMin, "--x-min"}, std::pair{s.xMax, "--x-max"}, std::pair{s.zMin, "--z-min"},
         std::pair{s.zMax, "--z-max"}, std::pair{s.stillWaterLevel, "--swl"}, std::pair{s.trunkOrigin, "--trunk-origin"},
         std::pair{s.currentU, "--current-u"}, std::pair{s.currentW, "--current-w"}}) {
-    finite(value, option, "m");
+    requireFiniteOption(value, option, "m");
   }
   if (!(s.xMin < s.xMax)) {
     core::failInput("--x-min", "{} m is not below --x-max = {} m: give x-min < x-max", s.xMin, s.xMax);
@@ -205,7 +224,7 @@ void StormSynth::validate() {
   if (!(s.zMin < s.zMax)) {
     core::failInput("--z-min", "{} m is not below --z-max = {} m: give z-min < z-max", s.zMin, s.zMax);
   }
-  positive(s.voxel, "--voxel", "the voxel size", "m");
+  requirePositive(s.voxel, "--voxel", "the voxel size", "m");
   if (cellCount(s.xMin, s.xMax, s.voxel) < 2 || cellCount(s.zMin, s.zMax, s.voxel) < 2) {
     core::failInput("--voxel",
                     "{} m leaves fewer than 2 voxels across x {}..{} m or z {}..{} m: use a smaller "
@@ -218,12 +237,12 @@ void StormSynth::validate() {
     core::failInput("--voxel", "{} m gives {:.3g} voxels: more than 1e8; use a larger voxel or a smaller grid", s.voxel,
                     voxels);
   }
-  positive(s.depth, "--depth", "the still water depth", "m");
-  positive(s.density, "--density", "the water density", "kg/m^3");
-  positive(s.gravity, "--gravity", "gravity", "m/s^2");
-  positive(s.dt, "--dt", "the record interval", "s");
-  positive(s.duration, "--duration", "the storm duration", "s");
-  positive(s.trunkLength, "--trunk-length", "the trunk length", "m");
+  requirePositive(s.depth, "--depth", "the still water depth", "m");
+  requirePositive(s.density, "--density", "the water density", "kg/m^3");
+  requirePositive(s.gravity, "--gravity", "gravity", "m/s^2");
+  requirePositive(s.dt, "--dt", "the record interval", "s");
+  requirePositive(s.duration, "--duration", "the storm duration", "s");
+  requirePositive(s.trunkLength, "--trunk-length", "the trunk length", "m");
   if (s.duration < s.dt * (1.0 - 1e-9)) {
     core::failInput("--duration", "{} s is shorter than --dt = {} s: a storm needs at least two records", s.duration,
                     s.dt);
@@ -245,7 +264,10 @@ void StormSynth::validate() {
   if (!std::isfinite(s.rampTime)) {
     core::failInput("--ramp", "{} s: give a finite ramp time (negative = two wave periods)", s.rampTime);
   }
+}
 
+double StormSynth::validateWave() {
+  SynthSettings& s = settings_;
   auto log = core::logger("storm");
   double amplitude = 0.0; // wave amplitude a_n for the variability normalisation (unit: m)
   switch (s.model) {
@@ -255,8 +277,8 @@ void StormSynth::validate() {
     break;
   case SynthModel::Airy:
   case SynthModel::Stokes2: {
-    positive(s.height, "--height", "the wave height", "m");
-    positive(s.period, "--period", "the wave period", "s");
+    requirePositive(s.height, "--height", "the wave height", "m");
+    requirePositive(s.period, "--period", "the wave period", "s");
     omega_ = 2.0 * kPi / s.period;
     k_ = waveNumber(omega_, s.depth, s.gravity);
     a_ = 0.5 * s.height;
@@ -322,7 +344,11 @@ void StormSynth::validate() {
     break;
   }
   }
+  return amplitude;
+}
 
+void StormSynth::validateVariability(double amplitude) {
+  SynthSettings& s = settings_;
   Variability& v = s.variability;
   if (v.present) {
     for (int c = 0; c < kVariabilityClasses; ++c) {
@@ -359,11 +385,6 @@ void StormSynth::validate() {
       v.source = "given to armour storm-file synth";
     }
   }
-  if (ramp_ > s.duration) {
-    log->warn("the ramp-up ({} s) is longer than the storm ({} s): the waves never reach full height", ramp_,
-              s.duration);
-  }
-  records_ = static_cast<std::size_t>(std::floor(s.duration / s.dt + 1e-9)) + 1;
 }
 
 void StormSynth::buildHeader(const std::string& command) {

@@ -157,6 +157,13 @@ private:
                     double* w, std::size_t stride) const;
   SynthFlow stokesPoint(double x, double z, double t, double eta) const;
   void validate();
+  /// The grid, water and record settings (part of validate()).
+  void validateGrid();
+  /// The wave model's settings; sets the wave members and the ramp. Returns the wave amplitude
+  /// a_n for the variability's normalisation (unit: m; 0 without waves).
+  double validateWave();
+  /// The variability model, normalised by `amplitude` when it gives none (unit: m).
+  void validateVariability(double amplitude);
   void buildHeader(const std::string& command);
 
   SynthSettings settings_;
