@@ -110,6 +110,97 @@ PoseMap readPoses(const std::filesystem::path& path) {
   return poses;
 }
 
+namespace {
+
+/// The slope frame of a pack: the face of the scene's (first) slope, or a plane fitted through the
+/// units (a level plane when they have no spread along x to fit).
+void setPackFrame(PackReport& r, const io::Scene& scene, const std::vector<Eigen::Vector3d>& positions) {
+  if (!scene.statics.slopes.empty()) {
+    const io::StaticSlope& s = scene.statics.slopes.front();
+    r.frame = analysis::SlopeFrame::fromTanAlpha(s.tanAlpha, Eigen::Vector3d(s.origin.x(), 0.0, s.origin.y()));
+    r.frameFromSlope = true;
+  } else {
+    try {
+      r.frame = analysis::fitSlopeFrame(positions);
+    } catch (const core::InputError&) {
+      // No spread along x to fit a gradient to (a tower, a single column): a level plane.
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& p : positions) mean += p / static_cast<double>(positions.size());
+      r.frame = analysis::SlopeFrame::fromTanAlpha(0.0, mean);
+    }
+  }
+}
+
+/// The layer on the slope: the underlayer's top, the thickness and the porosity (when the frame is
+/// the scene's slope and the units span an area).
+void measureLayer(PackReport& r, const std::vector<Eigen::Vector3d>& positions, const std::vector<double>& tops,
+                  const std::vector<double>& dn, const analysis::SurfaceStones& supports) {
+  if (r.frameFromSlope && r.packingHull.area > 0.0) {
+    double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, t0 = s0, t1 = -s0;
+    for (const auto& p : positions) {
+      const Eigen::Vector3d l = r.frame.toLocal(p);
+      s0 = std::min(s0, l.x());
+      s1 = std::max(s1, l.x());
+      t0 = std::min(t0, l.y());
+      t1 = std::max(t1, l.y());
+    }
+    // The layer's base: the mean top of the support bodies (the rocks) in the window, as
+    // armour place measures it (placement.txt), or the slope face where there are none.
+    const analysis::SlopeWindow window{s0, s1 + 1e-9, t0, t1 + 1e-9};
+    r.underlayerTop = analysis::meanTopIn(supports, window);
+    r.underlayerTopAllStones = analysis::meanTopIn(supports, window, false);
+    r.surfaceStones = supports.exposedCount;
+    r.supportStones = supports.top.size();
+    std::vector<double> aboveUnderlayer = tops;
+    for (double& t : aboveUnderlayer) t -= r.underlayerTop;
+    try {
+      r.thickness = analysis::layerThickness(positions, aboveUnderlayer, dn, r.frame, window);
+      double volume = 0.0;
+      for (double d : dn) volume += d * d * d;
+      r.porosity = 1.0 - volume / (r.packingHull.area * r.thickness->thickness);
+      if (!(r.porosity >= 0.0 && r.porosity < 1.0)) {
+        // The hull runs through the outer centroids, half a unit inside the pack's edge: for a
+        // few units it is smaller than their footprint and the formula leaves [0, 1).
+        r.porosityNote = fmt::format("1 - N V / (A t) = {:.3g} is no porosity: the hull of the {} centroids "
+                                     "({:.3g} m^2) is too small against the units' volume; analyse a pack of "
+                                     "more units",
+                                     r.porosity, positions.size(), r.packingHull.area);
+        r.porosity = std::nan("");
+      }
+    } catch (const core::InputError&) {
+    }
+  }
+}
+
+/// One row per unit: its place, attitude, contacts, height above the underlayer, displacement.
+void addUnitRows(PackReport& r, const io::Scene& scene, const simulation::BuiltScene& built,
+                 const std::vector<std::size_t>& units, const std::vector<Eigen::Vector3d>& positions,
+                 const std::vector<Eigen::Vector3d>& axes, const std::vector<double>& dn,
+                 const analysis::SurfaceStones& supports) {
+  for (std::size_t k = 0; k < units.size(); ++k) {
+    UnitRow row;
+    row.name = scene.bodies[units[k]].name;
+    row.position = positions[k];
+    row.local = r.frame.toLocal(positions[k]);
+    row.dn = dn[k];
+    row.attitude = analysis::attitude(axes[k], r.frame);
+    row.stereo = analysis::stereonetPoint(row.attitude);
+    const auto& c = r.contacts.bodies[built.bodyIndexOfSceneBody[units[k]]];
+    row.contactNumber = c.contactNumber;
+    row.unitNeighbours = c.unitNeighbours;
+    row.supportNeighbours = c.supportNeighbours;
+    row.maxContactForce = c.maxForce;
+    row.heightAboveUnderlayer = (row.local.z() - highestTopNear(supports, row.local, dn[k])) / dn[k];
+    row.stacked = c.supportNeighbours == 0 && row.heightAboveUnderlayer > 1.0;
+    r.touchingUnderlayer += c.supportNeighbours > 0 ? 1 : 0;
+    r.stackedUnits += row.stacked ? 1 : 0;
+    if (r.displacement) row.displacement = r.displacement->units[k];
+    r.units.push_back(row);
+  }
+}
+
+} // namespace
+
 PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, const PoseMap* state,
                        const PoseMap* reference) {
   io::Scene declared = input;
@@ -186,21 +277,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
   }
   r.contacts = analysis::contactNumbers(contacts, roles);
 
-  // The slope frame: the face of the scene's (first) slope, or a plane fitted through the units.
-  if (!scene.statics.slopes.empty()) {
-    const io::StaticSlope& s = scene.statics.slopes.front();
-    r.frame = analysis::SlopeFrame::fromTanAlpha(s.tanAlpha, Eigen::Vector3d(s.origin.x(), 0.0, s.origin.y()));
-    r.frameFromSlope = true;
-  } else {
-    try {
-      r.frame = analysis::fitSlopeFrame(positions);
-    } catch (const core::InputError&) {
-      // No spread along x to fit a gradient to (a tower, a single column): a level plane.
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const auto& p : positions) mean += p / static_cast<double>(positions.size());
-      r.frame = analysis::SlopeFrame::fromTanAlpha(0.0, mean);
-    }
-  }
+  setPackFrame(r, scene, positions);
   const auto axes = analysis::noseAxesWorld(orientations, bodyAxis);
   r.p2Q = analysis::p2QTensor(axes);
   try {
@@ -218,41 +295,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
   std::vector<double> tops;
   for (std::size_t i : units) tops.push_back(topOf(world, built.bodyIndexOfSceneBody[i], r.frame));
   const analysis::SurfaceStones supports = supportsOf(scene, built, units, r.frame);
-  if (r.frameFromSlope && r.packingHull.area > 0.0) {
-    double s0 = std::numeric_limits<double>::infinity(), s1 = -s0, t0 = s0, t1 = -s0;
-    for (const auto& p : positions) {
-      const Eigen::Vector3d l = r.frame.toLocal(p);
-      s0 = std::min(s0, l.x());
-      s1 = std::max(s1, l.x());
-      t0 = std::min(t0, l.y());
-      t1 = std::max(t1, l.y());
-    }
-    // The layer's base: the mean top of the support bodies (the rocks) in the window, as
-    // armour place measures it (placement.txt), or the slope face where there are none.
-    const analysis::SlopeWindow window{s0, s1 + 1e-9, t0, t1 + 1e-9};
-    r.underlayerTop = analysis::meanTopIn(supports, window);
-    r.underlayerTopAllStones = analysis::meanTopIn(supports, window, false);
-    r.surfaceStones = supports.exposedCount;
-    r.supportStones = supports.top.size();
-    std::vector<double> aboveUnderlayer = tops;
-    for (double& t : aboveUnderlayer) t -= r.underlayerTop;
-    try {
-      r.thickness = analysis::layerThickness(positions, aboveUnderlayer, dn, r.frame, window);
-      double volume = 0.0;
-      for (double d : dn) volume += d * d * d;
-      r.porosity = 1.0 - volume / (r.packingHull.area * r.thickness->thickness);
-      if (!(r.porosity >= 0.0 && r.porosity < 1.0)) {
-        // The hull runs through the outer centroids, half a unit inside the pack's edge: for a
-        // few units it is smaller than their footprint and the formula leaves [0, 1).
-        r.porosityNote = fmt::format("1 - N V / (A t) = {:.3g} is no porosity: the hull of the {} centroids "
-                                     "({:.3g} m^2) is too small against the units' volume; analyse a pack of "
-                                     "more units",
-                                     r.porosity, positions.size(), r.packingHull.area);
-        r.porosity = std::nan("");
-      }
-    } catch (const core::InputError&) {
-    }
-  }
+  measureLayer(r, positions, tops, dn, supports);
   if (reference != nullptr) {
     std::vector<Eigen::Vector3d> before;
     std::vector<Eigen::Quaterniond> qBefore;
@@ -266,26 +309,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     r.displacement = analysis::measureDisplacement(before, positions, qBefore, orientations, dn, r.frame,
                                                    settings.displacement);
   }
-  for (std::size_t k = 0; k < units.size(); ++k) {
-    UnitRow row;
-    row.name = scene.bodies[units[k]].name;
-    row.position = positions[k];
-    row.local = r.frame.toLocal(positions[k]);
-    row.dn = dn[k];
-    row.attitude = analysis::attitude(axes[k], r.frame);
-    row.stereo = analysis::stereonetPoint(row.attitude);
-    const auto& c = r.contacts.bodies[built.bodyIndexOfSceneBody[units[k]]];
-    row.contactNumber = c.contactNumber;
-    row.unitNeighbours = c.unitNeighbours;
-    row.supportNeighbours = c.supportNeighbours;
-    row.maxContactForce = c.maxForce;
-    row.heightAboveUnderlayer = (row.local.z() - highestTopNear(supports, row.local, dn[k])) / dn[k];
-    row.stacked = c.supportNeighbours == 0 && row.heightAboveUnderlayer > 1.0;
-    r.touchingUnderlayer += c.supportNeighbours > 0 ? 1 : 0;
-    r.stackedUnits += row.stacked ? 1 : 0;
-    if (r.displacement) row.displacement = r.displacement->units[k];
-    r.units.push_back(row);
-  }
+  addUnitRows(r, scene, built, units, positions, axes, dn, supports);
   return r;
 }
 
