@@ -32,50 +32,19 @@ const MeshRayCaster& Exposure::caster(const simulation::World& world, simulation
   return *casters_[shape];
 }
 
-std::vector<BodyExposure> Exposure::compute(const simulation::World& world, std::span<const BodyId> loaded,
-                                            const ExposureQuery& query, const std::string& where) {
-  stats_ = {};
-  std::vector<BodyExposure> result(loaded.size());
-  const double h = query.spacing;
-  if (!std::isfinite(h) || !(h > 0.0)) {
-    core::failInput(where, "ray spacing = {} m: must be a positive length (a quarter of the units' Dn is a good "
-                    "start)", h);
-  }
-  if (!query.slopeNormal.allFinite() || query.slopeNormal.norm() < 1e-12) {
-    core::failInput(where, "slope normal ({}, {}, {}) is not a finite non-zero vector", query.slopeNormal.x(),
-                    query.slopeNormal.y(), query.slopeNormal.z());
-  }
-  // Slope-plane frame (u, v, n), right-handed: v along the trunk, u up the slope.
-  const Vec3 n = query.slopeNormal.normalized();
-  Vec3 v = Vec3::UnitY() - n.y() * n;
-  if (v.norm() < 1e-6) {
-    v = Vec3::UnitX() - n.x() * n;
-  }
-  v.normalize();
-  const Vec3 u = v.cross(n);
-  const Vec3 d = query.side == ExposureSide::FromSea ? Vec3(-n) : n;
+namespace {
 
-  const auto& bodies = world.bodies();
-  const auto count = static_cast<BodyId>(bodies.size());
-  std::vector<std::int64_t> slot(count, -1);
-  for (std::size_t k = 0; k < loaded.size(); ++k) {
-    const BodyId b = loaded[k];
-    if (b < count && bodies.motionType(b) != MotionType::Static && slot[b] < 0) {
-      slot[b] = static_cast<std::int64_t>(k);
-    }
-  }
+using Ray = std::pair<std::int64_t, std::int64_t>; ///< grid point (i, j): (i + 1/2, j + 1/2) h in the slope plane
 
-  // Every body's bounding circle in the slope plane (centre (cu, cv), radius r).
-  std::vector<double> cu(count), cv(count), radius(count);
-  for (BodyId b = 0; b < count; ++b) {
-    cu[b] = bodies.position(b).dot(u);
-    cv[b] = bodies.position(b).dot(v);
-    radius[b] = world.shape(world.bodyShape(b)).radius * world.bodyScale(b);
-  }
-
-  // Rays: grid points inside a loaded body's circle; the same point from two bodies is one ray.
-  std::vector<std::pair<std::int64_t, std::int64_t>> rays;
-  double largest = 0.0;
+/// The rays: grid points of spacing h inside a loaded body's bounding circle (centre (cu, cv),
+/// radius r in the slope plane; loaded: slot >= 0), sorted, each once. `largest` gets the largest
+/// loaded radius. Refuses more than kMaxRays.
+std::vector<Ray> exposureRays(const std::vector<std::int64_t>& slot, const std::vector<double>& cu,
+                              const std::vector<double>& cv, const std::vector<double>& radius, double h,
+                              const std::string& where, double& largest) {
+  std::vector<Ray> rays;
+  largest = 0.0;
+  const auto count = static_cast<BodyId>(slot.size());
   for (BodyId b = 0; b < count; ++b) {
     if (slot[b] < 0) {
       continue;
@@ -103,13 +72,22 @@ std::vector<BodyExposure> Exposure::compute(const simulation::World& world, std:
   }
   std::sort(rays.begin(), rays.end());
   rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
-  stats_.rays = rays.size();
-  if (rays.empty()) {
-    return result;
-  }
+  return rays;
+}
 
-  // Bucket grid of bounding circles over the rays' extent, cells about one loaded body across;
-  // bodies enter their buckets in index order, so each bucket lists them sorted.
+/// A bucket grid of the bodies' bounding circles over the rays' extent, cells about one loaded
+/// body across; bodies enter their buckets in index order, so each bucket lists them sorted.
+struct BlockerGrid {
+  double uMin = 0.0, uMax = 0.0, vMin = 0.0, vMax = 0.0, cell = 0.0;
+  std::int64_t nu = 0, nv = 0;
+  std::vector<std::uint32_t> start; ///< bucket k's bodies: blockers[start[k] .. start[k + 1])
+  std::vector<BodyId> blockers;
+};
+
+BlockerGrid blockerGrid(const std::vector<Ray>& rays, double h, double largest, const std::vector<double>& cu,
+                        const std::vector<double>& cv, const std::vector<double>& radius) {
+  BlockerGrid g;
+  const auto count = static_cast<BodyId>(cu.size());
   double uMin = kInfinity, uMax = -kInfinity, vMin = kInfinity, vMax = -kInfinity;
   for (const auto& [i, j] : rays) {
     uMin = std::min(uMin, (static_cast<double>(i) + 0.5) * h);
@@ -155,6 +133,72 @@ std::vector<BodyExposure> Exposure::compute(const simulation::World& world, std:
       }
     }
   }
+  g.uMin = uMin;
+  g.uMax = uMax;
+  g.vMin = vMin;
+  g.vMax = vMax;
+  g.cell = cell;
+  g.nu = nu;
+  g.nv = nv;
+  g.start = std::move(start);
+  g.blockers = std::move(blockers);
+  return g;
+}
+
+} // namespace
+
+std::vector<BodyExposure> Exposure::compute(const simulation::World& world, std::span<const BodyId> loaded,
+                                            const ExposureQuery& query, const std::string& where) {
+  stats_ = {};
+  std::vector<BodyExposure> result(loaded.size());
+  const double h = query.spacing;
+  if (!std::isfinite(h) || !(h > 0.0)) {
+    core::failInput(where, "ray spacing = {} m: must be a positive length (a quarter of the units' Dn is a good "
+                    "start)", h);
+  }
+  if (!query.slopeNormal.allFinite() || query.slopeNormal.norm() < 1e-12) {
+    core::failInput(where, "slope normal ({}, {}, {}) is not a finite non-zero vector", query.slopeNormal.x(),
+                    query.slopeNormal.y(), query.slopeNormal.z());
+  }
+  // Slope-plane frame (u, v, n), right-handed: v along the trunk, u up the slope.
+  const Vec3 n = query.slopeNormal.normalized();
+  Vec3 v = Vec3::UnitY() - n.y() * n;
+  if (v.norm() < 1e-6) {
+    v = Vec3::UnitX() - n.x() * n;
+  }
+  v.normalize();
+  const Vec3 u = v.cross(n);
+  const Vec3 d = query.side == ExposureSide::FromSea ? Vec3(-n) : n;
+
+  const auto& bodies = world.bodies();
+  const auto count = static_cast<BodyId>(bodies.size());
+  std::vector<std::int64_t> slot(count, -1);
+  for (std::size_t k = 0; k < loaded.size(); ++k) {
+    const BodyId b = loaded[k];
+    if (b < count && bodies.motionType(b) != MotionType::Static && slot[b] < 0) {
+      slot[b] = static_cast<std::int64_t>(k);
+    }
+  }
+
+  // Every body's bounding circle in the slope plane (centre (cu, cv), radius r).
+  std::vector<double> cu(count), cv(count), radius(count);
+  for (BodyId b = 0; b < count; ++b) {
+    cu[b] = bodies.position(b).dot(u);
+    cv[b] = bodies.position(b).dot(v);
+    radius[b] = world.shape(world.bodyShape(b)).radius * world.bodyScale(b);
+  }
+
+  double largest = 0.0;
+  const std::vector<Ray> rays = exposureRays(slot, cu, cv, radius, h, where, largest);
+  stats_.rays = rays.size();
+  if (rays.empty()) {
+    return result;
+  }
+  const BlockerGrid grid = blockerGrid(rays, h, largest, cu, cv, radius);
+  const double uMin = grid.uMin, vMin = grid.vMin, cell = grid.cell;
+  const std::int64_t nu = grid.nu, nv = grid.nv;
+  const std::vector<std::uint32_t>& start = grid.start;
+  const std::vector<BodyId>& blockers = grid.blockers;
 
   // Per-body ray transforms, and the shapes' trees built serially before the parallel loop.
   std::vector<Eigen::Matrix3d> toBody(count);
