@@ -13,6 +13,7 @@
 #include <netcdf.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -104,6 +105,13 @@ struct StormWriter::Impl {
   }
 
   void define();
+  /// The global attributes: conventions, provenance, water, trunk (define mode).
+  void defineGlobalAttributes();
+  /// The variability model's variables (seed 000 section 2.2) over the class and phase dimensions.
+  void defineVariability(int classDim, int phaseDim);
+  /// The coordinates, their bounds and the sample counts (data mode): x, z, y, x_bnds, z_bnds,
+  /// y_bnds, samples.
+  void writeCoordinates(const std::array<int, 7>& vars);
   void writeVariability(const Variability& v);
   /// Check one field of `record` and convert it to the stored type at `out` (fill in empty voxels).
   void convertField(int variable, const StormRecord& record, std::size_t offset);
@@ -115,26 +123,7 @@ void StormWriter::Impl::define() {
   const nc_type dataType = dbl ? NC_DOUBLE : NC_FLOAT;
   const int level = std::clamp(options.deflateLevel, 0, 9);
 
-  text(NC_GLOBAL, "Conventions", "CF-1.8");
-  text(NC_GLOBAL, "title", h.provenance.title);
-  text(NC_GLOBAL, "source", h.provenance.software.empty() ? "armour " + core::version() : h.provenance.software);
-  text(NC_GLOBAL, "history",
-       utcNow() + ": " + (h.provenance.command.empty() ? std::string("armour storm writer") : h.provenance.command));
-  const int version = kStormFormatVersion;
-  check(nc_put_att_int(ncid, NC_GLOBAL, "armour_storm_version", NC_INT, 1, &version), "write armour_storm_version");
-  number(NC_GLOBAL, "still_water_level", h.stillWaterLevel);
-  number(NC_GLOBAL, "water_density", h.waterDensity);
-  number(NC_GLOBAL, "gravity", h.gravity);
-  number(NC_GLOBAL, "trunk_origin", h.trunkOrigin);
-  number(NC_GLOBAL, "trunk_length", h.trunkLength);
-  // Always written (0 or 1), so the file says which kind it is; readers treat an absent one as 0.
-  const int uniform = h.uniformAlongY ? 1 : 0;
-  check(nc_put_att_int(ncid, NC_GLOBAL, "uniform_along_y", NC_INT, 1, &uniform), "write uniform_along_y");
-  text(NC_GLOBAL, "source_case", h.provenance.sourceCase);
-  text(NC_GLOBAL, "openfoam_version", h.provenance.openfoamVersion);
-  text(NC_GLOBAL, "comment", h.provenance.comment);
-  text(NC_GLOBAL, "axes", kAxesText);
-  text(NC_GLOBAL, "references", "docs/storm-file.md (armour); seed 000, sections 2.2-2.3");
+  defineGlobalAttributes();
 
   int timeDim = -1, zDim = -1, xDim = -1, classDim = -1, phaseDim = -1, nvDim = -1;
   check(nc_def_dim(ncid, "time", NC_UNLIMITED, &timeDim), "define the time dimension");
@@ -238,7 +227,39 @@ void StormWriter::Impl::define() {
   text(samplesVar, "units", "1");
   text(samplesVar, "long_name", "surface samples averaged per voxel (m of seed 000); 0 = no data");
 
-  // Variability model (seed 000 section 2.2).
+  defineVariability(classDim, phaseDim);
+
+  check(nc_enddef(ncid), "finish the header");
+
+  writeCoordinates({xVar, zVar, yVar, xb, zb, yb, samplesVar});
+  writeVariability(h.variability);
+}
+
+void StormWriter::Impl::defineGlobalAttributes() {
+  const auto& h = header;
+  text(NC_GLOBAL, "Conventions", "CF-1.8");
+  text(NC_GLOBAL, "title", h.provenance.title);
+  text(NC_GLOBAL, "source", h.provenance.software.empty() ? "armour " + core::version() : h.provenance.software);
+  text(NC_GLOBAL, "history",
+       utcNow() + ": " + (h.provenance.command.empty() ? std::string("armour storm writer") : h.provenance.command));
+  const int version = kStormFormatVersion;
+  check(nc_put_att_int(ncid, NC_GLOBAL, "armour_storm_version", NC_INT, 1, &version), "write armour_storm_version");
+  number(NC_GLOBAL, "still_water_level", h.stillWaterLevel);
+  number(NC_GLOBAL, "water_density", h.waterDensity);
+  number(NC_GLOBAL, "gravity", h.gravity);
+  number(NC_GLOBAL, "trunk_origin", h.trunkOrigin);
+  number(NC_GLOBAL, "trunk_length", h.trunkLength);
+  // Always written (0 or 1), so the file says which kind it is; readers treat an absent one as 0.
+  const int uniform = h.uniformAlongY ? 1 : 0;
+  check(nc_put_att_int(ncid, NC_GLOBAL, "uniform_along_y", NC_INT, 1, &uniform), "write uniform_along_y");
+  text(NC_GLOBAL, "source_case", h.provenance.sourceCase);
+  text(NC_GLOBAL, "openfoam_version", h.provenance.openfoamVersion);
+  text(NC_GLOBAL, "comment", h.provenance.comment);
+  text(NC_GLOBAL, "axes", kAxesText);
+  text(NC_GLOBAL, "references", "docs/storm-file.md (armour); seed 000, sections 2.2-2.3");
+}
+
+void StormWriter::Impl::defineVariability(int classDim, int phaseDim) {
   const std::string classNames = fmt::format("{} {} {} {}", kVariabilityClassNames[0], kVariabilityClassNames[1],
                                              kVariabilityClassNames[2], kVariabilityClassNames[3]);
   const auto classVar = [&](const char* name, nc_type type, const char* units, const char* longName, int& var) {
@@ -261,9 +282,11 @@ void StormWriter::Impl::define() {
   check(nc_def_var(ncid, "normalisation_elevation", NC_DOUBLE, 0, nullptr, &anVar), "define normalisation_elevation");
   text(anVar, "units", "m");
   text(anVar, "long_name", "wave amplitude a_n at which P_n was taken");
+}
 
-  check(nc_enddef(ncid), "finish the header");
-
+void StormWriter::Impl::writeCoordinates(const std::array<int, 7>& vars) {
+  const auto& h = header;
+  const auto [xVar, zVar, yVar, xb, zb, yb, samplesVar] = vars;
   check(nc_put_var_double(ncid, xVar, h.x.data()), "write x");
   check(nc_put_var_double(ncid, zVar, h.z.data()), "write z");
   const double y = h.trunkOrigin + 0.5 * h.trunkLength;
@@ -282,7 +305,6 @@ void StormWriter::Impl::define() {
   check(nc_put_var_double(ncid, xb, bounds(h.x).data()), "write x_bnds");
   check(nc_put_var_double(ncid, zb, bounds(h.z).data()), "write z_bnds");
   check(nc_put_var_int(ncid, samplesVar, h.samples.data()), "write samples");
-  writeVariability(h.variability);
 }
 
 void StormWriter::Impl::writeVariability(const Variability& v) {
