@@ -17,6 +17,9 @@
 #include <functional>
 #include <numbers>
 #include <random>
+#include <memory>
+#include <tuple>
+#include <optional>
 
 namespace armour::placement {
 namespace {
@@ -364,30 +367,86 @@ GridPlan planGrid(const io::Scene& scene) {
   return plan;
 }
 
-PlacementResult place(const io::Scene& input, const ProgressFn& progress, const PlaceOptions& options) {
-  auto log = core::logger("place");
-  const auto wallStart = std::chrono::steady_clock::now();
+namespace {
+
+/// One placement in progress (place() below): the scene being placed, its World, and what the
+/// phases share. The phases, in order: the rock underlayer (layRocks), the units (prepareUnits,
+/// then placeUnit for each grid point), the final settle (settleAll), the placed scene and its
+/// summary (finish). Not copyable: the slope and the aliases point into `result`.
+class PlacementRun {
+public:
+  PlacementRun(const io::Scene& input, const ProgressFn& progress, const PlaceOptions& options);
+  PlacementRun(const PlacementRun&) = delete;
+  PlacementRun& operator=(const PlacementRun&) = delete;
+
+  void layRocks();
+  void prepareUnits();
+  void lowerUnits();
+  void settleAll();
+  PlacementResult finish();
+
+private:
+  /// The World shape of a scene shape, added on first use.
+  ShapeId worldShape(std::size_t sceneShape);
+  Deposit rebuildDeposit() const;
+  std::pair<Vec3, double> descentStart(const GridPoint& g) const;
+  PlacementProgress progressNow() const;
+  void placeUnit(int i);
+
+  const io::Scene& input;
+  const ProgressFn& progress;
+  const PlaceOptions& options;
+  std::shared_ptr<spdlog::logger> log;
+  std::chrono::steady_clock::time_point wallStart;
+  PlacementResult result;
+  const PlacementProgress* resume = nullptr;
+  std::vector<AddedBody> added; ///< every body placed, for checkpoints
+  std::size_t unitShape = 0;
+  std::size_t unitMaterial = 0;
+  double dn = 0.0;              ///< the units' nominal diameter (unit: m)
+  const io::StaticSlope* slope = nullptr; ///< in result.scene
+  double wallLo = 0.0, wallHi = 0.0;      ///< the trunk's walls along y (unit: m)
+  GridSettings gridSettings;
+  GridPlan plan;
+  std::size_t givenBodies = 0;
+  ShapeId unitShapeId = 0;
+  double unitScale = 1.0;
+  double clearance = 0.0;       ///< unit: m
+  std::vector<BodyId> rockBodies;
+  std::size_t firstUnitBody = 0;
+  bool alongNormal = false;
+  Quat unitFrame = Quat::Identity();   ///< deposit -> world
+  Quat toUnitFrame = Quat::Identity();
+  std::optional<Deposit> staticDeposit; ///< the statics alone
+  std::optional<Deposit> deposit_;      ///< the pack so far
+  int total = 0;                ///< units to place
+  bool settleEach = false;
+  std::vector<BodyId> frozen;
+  std::vector<double> settleDrifts;
+  LayerBase layerBase;
+  double step = 0.0;            ///< lowering step (unit: m)
+};
+
+PlacementRun::PlacementRun(const io::Scene& input_, const ProgressFn& progress_, const PlaceOptions& options_)
+    : input(input_), progress(progress_), options(options_), log(core::logger("place")),
+      wallStart(std::chrono::steady_clock::now()) {
   const PlacementSettings& ps = input.placement;
   if (!ps.enabled) core::failInput(input.sourceName, "no placement block: `armour place` needs one (docs/placement.md)");
-  PlacementResult result;
   io::Scene& scene = result.scene;
   scene = input;
-  const PlacementProgress* resume = options.resume;
+  resume = options.resume;
   if (resume != nullptr && !options.dynamics)
     core::failInput(input.sourceName, "a placement without dynamics has no checkpoints to continue from");
-  std::vector<AddedBody> added; // every body placed, for checkpoints
 
-  const std::size_t unitShape = resolveShape(scene, ps.shape);
-  const std::size_t unitMaterial = resolveMaterial(scene, ps.material, "placement.material");
-  const double dn = std::cbrt(ps.volume);
-  const io::StaticSlope* slope = findSlope(scene);
-  const auto [wallLo, wallHi] = trunkWalls(scene);
+  unitShape = resolveShape(scene, ps.shape);
+  unitMaterial = resolveMaterial(scene, ps.material, "placement.material");
+  dn = std::cbrt(ps.volume);
+  slope = findSlope(scene);
+  std::tie(wallLo, wallHi) = trunkWalls(scene);
 
   // Grid points first: bad grids fail before anything is built.
-  const GridSettings gridSettings = effectiveGridSettings(scene);
-  const GridPlan plan = planGrid(scene);
-  const std::vector<GridPoint>& grid = plan.points;
-  const double wallWidth = plan.wallWidth;
+  gridSettings = effectiveGridSettings(scene);
+  plan = planGrid(scene);
   result.summary.gridPackingDensity = plan.packingDensity;
 
   // The World of the scene as given (statics and any bodies already there).
@@ -401,24 +460,33 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     log->info("{}", simulation::describeInterpenetration(overlaps));
     simulation::refuseInterpenetration(overlaps, scene.sourceName);
   }
-  const std::size_t givenBodies = scene.bodies.size();
+  givenBodies = scene.bodies.size();
   result.firstAddedBody = givenBodies;
 
   // Shapes: the unit's, and the rock library.
-  const auto worldShape = [&](std::size_t sceneShape) -> ShapeId {
-    if (result.built.shapeOfSceneShape.size() <= sceneShape) result.built.shapeOfSceneShape.resize(sceneShape + 1);
-    auto& id = result.built.shapeOfSceneShape[sceneShape];
-    if (!id) id = world.addShape(scene.shapes[sceneShape].name, simulation::shapeMesh(scene.shapes[sceneShape]));
-    return *id;
-  };
-  const ShapeId unitShapeId = worldShape(unitShape);
+  unitShapeId = worldShape(unitShape);
   const simulation::ShapeModel& unitModel = world.shape(unitShapeId);
-  const double unitScale = std::cbrt(ps.volume / unitModel.unitMass.volume);
-  const double clearance = ps.clearance * dn;
+  unitScale = std::cbrt(ps.volume / unitModel.unitMass.volume);
+  clearance = ps.clearance * dn;
+}
 
-  // 1. The rock underlayer.
+ShapeId PlacementRun::worldShape(std::size_t sceneShape) {
+  io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  if (result.built.shapeOfSceneShape.size() <= sceneShape) result.built.shapeOfSceneShape.resize(sceneShape + 1);
+  auto& id = result.built.shapeOfSceneShape[sceneShape];
+  if (!id) id = world.addShape(scene.shapes[sceneShape].name, simulation::shapeMesh(scene.shapes[sceneShape]));
+  return *id;
+}
+
+// 1. The rock underlayer.
+void PlacementRun::layRocks() {
+  const PlacementSettings& ps = input.placement;
+  io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  const std::vector<GridPoint>& grid = plan.points;
+  const double wallWidth = plan.wallWidth;
   const RockSettings& rs = ps.rocks;
-  std::vector<BodyId> rockBodies;
   if (rs.enabled) {
     if (slope == nullptr) core::failInput(scene.sourceName, "placement.rocks: the rocks are dropped on a slope; add one");
     const std::size_t rockMaterial = resolveMaterial(scene, rs.material.empty() ? ps.material : rs.material,
@@ -437,8 +505,8 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     double rockRadius = 0.0;
     for (const auto& [s, id] : rockShapes) rockRadius = std::max(rockRadius, world.shape(id).radius);
     const double maxScale = rs.dn50 * std::pow(rs.grading, 0.25);
-    Deposit deposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
-    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(deposit, world, b, toFrame);
+    Deposit rockDeposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
+    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(rockDeposit, world, b, toFrame);
     // Rocks cover the face from the toe (toeLength offshore of the origin) to sEnd, between the walls.
     const double rows = grid.empty() ? 0.0 : std::max_element(grid.begin(), grid.end(), [](auto& a, auto& b) {
                                                  return a.s < b.s;
@@ -476,7 +544,7 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
         u.R = (toFrame * natural * model.naturalToBody.conjugate()).toRotationMatrix();
         u.radius = model.radius * scale;
         u.x = Vec3(px, py, 0.0);
-        if (!deposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
+        if (!rockDeposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
         if (!found || u.x.z() < best.x.z()) {
           best = u;
           bestNatural = natural;
@@ -485,11 +553,11 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       }
       if (!found) continue; // nothing fits here (a wall corner): the next drop point
       const Mat3 before = best.R;
-      deposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
+      rockDeposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
       // The orientation change of the slide, applied to the natural frame (in world axes).
       const Quat tiltFrame(Mat3(best.R * before.transpose()));
       const Quat natural = (frame * tiltFrame * toFrame * bestNatural).normalized();
-      deposit.add(best);
+      rockDeposit.add(best);
       BodySpec spec;
       spec.name = fmt::format("rock_{:04d}", rockBodies.size());
       spec.shape = shapeId;
@@ -524,32 +592,61 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     log->info("rock underlayer: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", rockBodies.size(),
               rs.dn50, rs.grading, x1 - x0, y1 - y0);
   }
+}
 
-  // 2. The units, lowered vertically (world frame) or along the slope normal (the deposit works
-  // in the slope frame, so a unit lands on the face at its grid point's up-slope distance s
-  // instead of h tan(alpha) further up, h its centroid's height above the face).
-  const std::size_t firstUnitBody = world.bodies().size();
-  const bool alongNormal = ps.lowering == Lowering::SlopeNormal;
-  if (alongNormal && slope == nullptr)
-    core::failInput(scene.sourceName, "placement.lowering = slope_normal needs a slope; add one or use vertical");
-  const Quat unitFrame = alongNormal ? slopeFrame(slope->tanAlpha) : Quat::Identity(); // deposit -> world
-  const Quat toUnitFrame = unitFrame.conjugate();
-  // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
-  const Deposit staticDeposit =
-      makeDeposit(result.built, toUnitFrame, 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn));
-  const auto rebuildDeposit = [&]() {
-    Deposit d = staticDeposit;
-    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(d, world, b, toUnitFrame);
-    return d;
-  };
-  // Where unit i starts its descent, in the deposit frame: its grid point (on the face, or at the
-  // grid file's height) and the height to lower from.
-  const auto descentStart = [&](const GridPoint& g) -> std::pair<Vec3, double> {
+Deposit PlacementRun::rebuildDeposit() const {
+  const World& world = *result.built.world;
+  Deposit d = *staticDeposit;
+  for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(d, world, b, toUnitFrame);
+  return d;
+}
+
+// Where unit i starts its descent, in the deposit frame: its grid point (on the face, or at the
+// grid file's height) and the height to lower from.
+std::pair<Vec3, double> PlacementRun::descentStart(const GridPoint& g) const {
     if (!alongNormal) return {Vec3(g.plan.x(), g.plan.y(), 0.0), g.startZ ? *g.startZ : Deposit::kAbove};
     const double faceZ = slope->origin.y() + std::max(0.0, g.plan.x() - slope->origin.x()) * slope->tanAlpha;
     const Vec3 p = toUnitFrame * Vec3(g.plan.x(), g.plan.y(), g.startZ ? *g.startZ : faceZ);
     return {Vec3(p.x(), p.y(), 0.0), g.startZ ? p.z() : Deposit::kAbove};
-  };
+}
+
+// The progress at a safe point (PlacementProgress): the bodies, records and counts so far and
+// the World's state; the caller fills in the stage.
+PlacementProgress PlacementRun::progressNow() const {
+  const World& world = *result.built.world;
+    PlacementProgress p;
+    p.unitsDone = static_cast<int>(result.units.size());
+    p.bodies = added;
+    p.units = result.units;
+    p.frozen.assign(frozen.begin(), frozen.end());
+    p.settleDrifts = settleDrifts;
+    p.summary.cappedUnits = result.summary.cappedUnits;
+    p.summary.settleCappedUnits = result.summary.settleCappedUnits;
+    p.summary.drifted = result.summary.drifted;
+    p.wallSeconds = (resume != nullptr ? resume->wallSeconds : 0.0) +
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    p.world = world.captureState();
+    return p;
+}
+
+void PlacementRun::prepareUnits() {
+  const PlacementSettings& ps = input.placement;
+  io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  const std::vector<GridPoint>& grid = plan.points;
+  const simulation::ShapeModel& unitModel = world.shape(unitShapeId);
+  // 2. The units, lowered vertically (world frame) or along the slope normal (the deposit works
+  // in the slope frame, so a unit lands on the face at its grid point's up-slope distance s
+  // instead of h tan(alpha) further up, h its centroid's height above the face).
+  firstUnitBody = world.bodies().size();
+  alongNormal = ps.lowering == Lowering::SlopeNormal;
+  if (alongNormal && slope == nullptr)
+    core::failInput(scene.sourceName, "placement.lowering = slope_normal needs a slope; add one or use vertical");
+  unitFrame = alongNormal ? slopeFrame(slope->tanAlpha) : Quat::Identity(); // deposit -> world
+  toUnitFrame = unitFrame.conjugate();
+  // The statics once (their convex hulls take a while for a rough face), then a copy per rebuild.
+  staticDeposit.emplace(
+      makeDeposit(result.built, toUnitFrame, 2.0 * std::max(unitModel.radius * unitScale, 0.5 * dn)));
   if (resume != nullptr) {
     // The units of the checkpoint, then the World's state over all: poses, velocities, contacts'
     // friction springs, rest timers, time and step count as they were.
@@ -579,12 +676,11 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     log->info("continuing from the checkpoint: {} rocks and {} units placed, t = {:.3f} s{}", rockBodies.size(),
               resume->unitsDone, world.time(), resume->finalSettle ? ", in the final settle" : "");
   }
-  Deposit deposit = rebuildDeposit();
-  const int total = static_cast<int>(grid.size());
+  deposit_.emplace(rebuildDeposit());
+  total = static_cast<int>(grid.size());
   // settle_each: every movable body but the one settling is held fixed (Static) until the final
   // release; the scene's own movable bodies too, so one body is awake at a time.
-  const bool settleEach = ps.settleEach.enabled && options.dynamics;
-  std::vector<BodyId> frozen;
+  settleEach = ps.settleEach.enabled && options.dynamics;
   if (resume != nullptr) {
     frozen.assign(resume->frozen.begin(), resume->frozen.end());
   } else if (settleEach) {
@@ -594,7 +690,6 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
       frozen.push_back(b);
     }
   }
-  std::vector<double> settleDrifts;
   if (resume != nullptr) {
     settleDrifts = resume->settleDrifts;
     result.units = resume->units;
@@ -602,26 +697,8 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     result.summary.settleCappedUnits = resume->summary.settleCappedUnits;
     result.summary.drifted = resume->summary.drifted;
   }
-  // The progress at a safe point (PlacementProgress): the bodies, records and counts so far and
-  // the World's state; the caller fills in the stage.
-  const auto progressNow = [&]() {
-    PlacementProgress p;
-    p.unitsDone = static_cast<int>(result.units.size());
-    p.bodies = added;
-    p.units = result.units;
-    p.frozen.assign(frozen.begin(), frozen.end());
-    p.settleDrifts = settleDrifts;
-    p.summary.cappedUnits = result.summary.cappedUnits;
-    p.summary.settleCappedUnits = result.summary.settleCappedUnits;
-    p.summary.drifted = result.summary.drifted;
-    p.wallSeconds = (resume != nullptr ? resume->wallSeconds : 0.0) +
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-    p.world = world.captureState();
-    return p;
-  };
   // select: keyed measures tops from the underlayer's: the mean top of the rocks' surface stones
   // (here, after a restart has restored the rocks' poses).
-  LayerBase layerBase;
   if (ps.orientation.select == OrientationSelect::Keyed) {
     const Vec3 origin = slope != nullptr ? Vec3(slope->origin.x(), 0.0, slope->origin.y()) : Vec3::Zero();
     const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope != nullptr ? slope->tanAlpha : 0.0, origin);
@@ -634,113 +711,130 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
     layerBase.normal = toUnitFrame * frame.normal;
     layerBase.offset = frame.normal.dot(origin) + top;
   }
-  const double step = 0.05 * dn;
-  for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) {
-    const GridPoint& g = grid[static_cast<std::size_t>(i)];
-    std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
-    const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
-    const bool keyed = ps.orientation.select == OrientationSelect::Keyed;
-    // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
-    // natural frame too (world axes: the deposit is not rotated for the units).
-    // Keyed: the slide keeps the moves that lower the keyed cost, not the centroid.
-    const std::function<double(const Placed&)> cost =
-        keyed ? std::function<double(const Placed&)>(
-                    [&](const Placed& u) { return keyedCost(deposit, u, firstUnitBody, clearance, dn, ps.orientation, layerBase); })
-              : std::function<double(const Placed&)>();
-    const auto nestUnit = [&](Placed& u, Quat& natural) {
-      const Mat3 before = u.R;
-      deposit.slideDown(u, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
-                        ps.nest.maxDrift * dn, ps.nest.shift * dn, cost, step / dn);
-      natural = (unitFrame * Quat(Mat3(u.R * before.transpose())) * toUnitFrame * natural).normalized();
-    };
-    Placed best;
-    Quat bestNatural = Quat::Identity();
-    double bestCost = std::numeric_limits<double>::infinity();
-    bool found = false;
-    for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
-      // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
-      const Quat frame = ps.orientation.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
-      Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
-      Placed u;
-      u.shape = &unitModel;
-      u.scale = unitScale;
-      u.R = (toUnitFrame * natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
-      u.radius = unitModel.radius * unitScale;
-      const auto [start, startZ] = descentStart(g);
-      u.x = start;
-      if (!deposit.lower(u, step, clearance, startZ)) continue;
-      // Keyed: each candidate is nested before it is judged, as the operator judges a unit where
-      // it settles into the hole, not where it first touched.
-      if (keyed && ps.nest.enabled) nestUnit(u, natural);
-      const double c = keyed ? cost(u) : u.x.z();
-      if (!found || c < bestCost) {
-        best = u;
-        bestNatural = natural;
-        bestCost = c;
-        found = true;
-      }
-    }
-    if (found && ps.nest.enabled && !keyed) nestUnit(best, bestNatural);
-    if (!found)
-      core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
-                                        "(between the walls, or blocked where it starts); move the point or the walls",
-                      name, i, g.plan.x(), g.plan.y());
-    BodySpec spec;
-    spec.name = name;
-    spec.shape = unitShapeId;
-    spec.scale = unitScale;
-    spec.material = static_cast<simulation::MaterialId>(unitMaterial);
-    spec.position = unitFrame * best.x;
-    spec.orientation = bestNatural;
-    UnitRecord rec;
-    rec.name = name;
-    rec.gridPoint = spec.position;
-    rec.releaseOrientation = bestNatural;
-    rec.releaseTime = world.time();
-    rec.touchPoint = spec.position;
-    if (settleEach) {
-      // Its own settle, everything else fixed, then frozen where it rests: the next unit is
-      // lowered onto it as it lies.
-      if (ps.method == Method::Crane) spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed);
-      rec.body = world.addBody(spec);
-      const LoneSettle lone = settleAlone(world, rec.body, ps.settleEach, dn);
-      world.bodies().setMotionType(rec.body, dynamics::MotionType::Static);
-      frozen.push_back(rec.body);
-      rec.gridPoint = world.bodies().position(rec.body);
-      rec.releaseOrientation = world.naturalOrientation(rec.body).normalized();
-      rec.restTime = lone.time;
-      rec.capped = !lone.rested;
-      rec.settleDrift = lone.drift / dn;
-      settleDrifts.push_back(rec.settleDrift);
-      if (!lone.rested) ++result.summary.settleCappedUnits;
-      if (rec.settleDrift > ps.settleEach.maxDrift) result.summary.drifted.push_back(name);
-      log->debug("{}: own settle {:.3f} s, {}, drift {:.3f} Dn", name, lone.time,
-                 lone.rested ? "at rest" : (lone.held ? "held at max drift" : "time cap"), rec.settleDrift);
-      addWorldBody(deposit, world, rec.body, toUnitFrame);
-    } else if (ps.method == Method::Crane && options.dynamics) {
-      spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed); // along the lowering direction
-      rec.body = world.addBody(spec);
-      const auto [t, end] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime,
-                                   false, {world.time(), world.stepCount(), -1.0});
-      rec.restTime = t;
-      rec.capped = end == SettleEnd::TimeCap;
-      if (rec.capped) ++result.summary.cappedUnits;
-      deposit = rebuildDeposit(); // the pack as it now lies
-    } else {
-      rec.body = world.addBody(spec);
-      deposit.add(best);
-    }
-    result.units.push_back(rec);
-    added.push_back({name, unitShape, unitScale, unitMaterial, ps.volume, false});
-    if (progress) progress(i + 1, total, world.time());
-    // Safe points where the World alone says where the placement stands (method grid without
-    // settle_each keeps its geometric deposit, which is not in a checkpoint: it has none until
-    // the final settle, and its units cost no simulation).
-    if (options.dynamics && (settleEach || ps.method == Method::Crane) && options.safePoint &&
-        options.safePoint(progressNow))
-      throw PlacementStopped(fmt::format("stopped after {} of {} units", i + 1, total));
-  }
+  step = 0.05 * dn;
+}
 
+void PlacementRun::lowerUnits() {
+  for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) placeUnit(i);
+}
+
+/// Unit i: lowered at its grid point in the best of its trial orientations, nested, then settled
+/// as the method says; a safe point after it.
+void PlacementRun::placeUnit(int i) {
+  const PlacementSettings& ps = input.placement;
+  const io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  const std::vector<GridPoint>& grid = plan.points;
+  const simulation::ShapeModel& unitModel = world.shape(unitShapeId);
+  Deposit& deposit = *deposit_;
+  const GridPoint& g = grid[static_cast<std::size_t>(i)];
+  std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
+  const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
+  const bool keyed = ps.orientation.select == OrientationSelect::Keyed;
+  // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
+  // natural frame too (world axes: the deposit is not rotated for the units).
+  // Keyed: the slide keeps the moves that lower the keyed cost, not the centroid.
+  const std::function<double(const Placed&)> cost =
+      keyed ? std::function<double(const Placed&)>(
+                  [&](const Placed& u) { return keyedCost(deposit, u, firstUnitBody, clearance, dn, ps.orientation, layerBase); })
+            : std::function<double(const Placed&)>();
+  const auto nestUnit = [&](Placed& u, Quat& natural) {
+    const Mat3 before = u.R;
+    deposit.slideDown(u, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
+                      ps.nest.maxDrift * dn, ps.nest.shift * dn, cost, step / dn);
+    natural = (unitFrame * Quat(Mat3(u.R * before.transpose())) * toUnitFrame * natural).normalized();
+  };
+  Placed best;
+  Quat bestNatural = Quat::Identity();
+  double bestCost = std::numeric_limits<double>::infinity();
+  bool found = false;
+  for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
+    // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
+    const Quat frame = ps.orientation.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
+    Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
+    Placed u;
+    u.shape = &unitModel;
+    u.scale = unitScale;
+    u.R = (toUnitFrame * natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
+    u.radius = unitModel.radius * unitScale;
+    const auto [start, startZ] = descentStart(g);
+    u.x = start;
+    if (!deposit.lower(u, step, clearance, startZ)) continue;
+    // Keyed: each candidate is nested before it is judged, as the operator judges a unit where
+    // it settles into the hole, not where it first touched.
+    if (keyed && ps.nest.enabled) nestUnit(u, natural);
+    const double c = keyed ? cost(u) : u.x.z();
+    if (!found || c < bestCost) {
+      best = u;
+      bestNatural = natural;
+      bestCost = c;
+      found = true;
+    }
+  }
+  if (found && ps.nest.enabled && !keyed) nestUnit(best, bestNatural);
+  if (!found)
+    core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
+                                      "(between the walls, or blocked where it starts); move the point or the walls",
+                    name, i, g.plan.x(), g.plan.y());
+  BodySpec spec;
+  spec.name = name;
+  spec.shape = unitShapeId;
+  spec.scale = unitScale;
+  spec.material = static_cast<simulation::MaterialId>(unitMaterial);
+  spec.position = unitFrame * best.x;
+  spec.orientation = bestNatural;
+  UnitRecord rec;
+  rec.name = name;
+  rec.gridPoint = spec.position;
+  rec.releaseOrientation = bestNatural;
+  rec.releaseTime = world.time();
+  rec.touchPoint = spec.position;
+  if (settleEach) {
+    // Its own settle, everything else fixed, then frozen where it rests: the next unit is
+    // lowered onto it as it lies.
+    if (ps.method == Method::Crane) spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed);
+    rec.body = world.addBody(spec);
+    const LoneSettle lone = settleAlone(world, rec.body, ps.settleEach, dn);
+    world.bodies().setMotionType(rec.body, dynamics::MotionType::Static);
+    frozen.push_back(rec.body);
+    rec.gridPoint = world.bodies().position(rec.body);
+    rec.releaseOrientation = world.naturalOrientation(rec.body).normalized();
+    rec.restTime = lone.time;
+    rec.capped = !lone.rested;
+    rec.settleDrift = lone.drift / dn;
+    settleDrifts.push_back(rec.settleDrift);
+    if (!lone.rested) ++result.summary.settleCappedUnits;
+    if (rec.settleDrift > ps.settleEach.maxDrift) result.summary.drifted.push_back(name);
+    log->debug("{}: own settle {:.3f} s, {}, drift {:.3f} Dn", name, lone.time,
+               lone.rested ? "at rest" : (lone.held ? "held at max drift" : "time cap"), rec.settleDrift);
+    addWorldBody(deposit, world, rec.body, toUnitFrame);
+  } else if (ps.method == Method::Crane && options.dynamics) {
+    spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed); // along the lowering direction
+    rec.body = world.addBody(spec);
+    const auto [t, end] = settle(world, firstUnitBody, ps.crane.restSpeed, ps.crane.minTime, ps.crane.maxTime,
+                                 false, {world.time(), world.stepCount(), -1.0});
+    rec.restTime = t;
+    rec.capped = end == SettleEnd::TimeCap;
+    if (rec.capped) ++result.summary.cappedUnits;
+    deposit = rebuildDeposit(); // the pack as it now lies
+  } else {
+    rec.body = world.addBody(spec);
+    deposit.add(best);
+  }
+  result.units.push_back(rec);
+  added.push_back({name, unitShape, unitScale, unitMaterial, ps.volume, false});
+  if (progress) progress(i + 1, total, world.time());
+  // Safe points where the World alone says where the placement stands (method grid without
+  // settle_each keeps its geometric deposit, which is not in a checkpoint: it has none until
+  // the final settle, and its units cost no simulation).
+  if (options.dynamics && (settleEach || ps.method == Method::Crane) && options.safePoint &&
+      options.safePoint([this] { return progressNow(); }))
+    throw PlacementStopped(fmt::format("stopped after {} of {} units", i + 1, total));
+}
+
+void PlacementRun::settleAll() {
+  const PlacementSettings& ps = input.placement;
+  World& world = *result.built.world;
   // 3. Settle: until every unit sleeps (or no point of any unit moves faster than the rest speed
   // for the sleep time), then wake them all and again, until a round moves no unit by more than
   // kCreep: a unit that fell asleep while creeping down the face moves on when woken, as it would
@@ -809,7 +903,14 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   }
   if (options.dynamics)
     log->info("settled {} after {:.2f} s", rest ? "to rest" : "(time cap reached)", world.time() - settleStart);
+}
 
+PlacementResult PlacementRun::finish() {
+  const PlacementSettings& ps = input.placement;
+  io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  const std::vector<GridPoint>& grid = plan.points;
+  const double wallWidth = plan.wallWidth;
   // The placed scene: the units where they lie.
   for (const UnitRecord& u : result.units)
     scene.bodies.push_back(sceneBody(world, u.body, u.name, unitShape, unitMaterial, ps.volume, false));
@@ -874,7 +975,18 @@ PlacementResult place(const io::Scene& input, const ProgressFn& progress, const 
   }
   sm.wallSeconds = (resume != nullptr ? resume->wallSeconds : 0.0) +
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-  return result;
+  return std::move(result);
+}
+
+} // namespace
+
+PlacementResult place(const io::Scene& input, const ProgressFn& progress, const PlaceOptions& options) {
+  PlacementRun run(input, progress, options);
+  run.layRocks();
+  run.prepareUnits();
+  run.lowerUnits();
+  run.settleAll();
+  return run.finish();
 }
 
 } // namespace armour::placement
