@@ -28,7 +28,9 @@ inline constexpr std::uint32_t kDeformableCheckpointVersion = 4;
 
 /// The setup a checkpoint belongs to, one "key = value" line each: the mesh (counts and a hash of
 /// its nodes and connectivity), the material, gravity, F-bar, damping, step safety, mass scaling,
-/// half-spaces and contact settings (DeformableSettings).
+/// half-spaces and contact settings (DeformableSettings), and the rigid obstacles: scale and level
+/// set of each, with the pose of a fixed one (a moving one's pose is state, kept by its owner's
+/// checkpoint: RigidObstacle::moving).
 [[nodiscard]] std::string setupIdentity(const DeformableBody& body);
 
 /// Throws core::InputError naming the path if it cannot be written.
