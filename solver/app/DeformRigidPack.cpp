@@ -3,6 +3,7 @@
 
 #include "core/Error.hpp"
 #include "simulation/CheckpointFile.hpp"
+#include "simulation/RunOutputs.hpp"
 
 #include <fmt/format.h>
 
@@ -96,8 +97,6 @@ std::unique_ptr<DeformRigidPack> DeformRigidPack::make(const io::DeformableScene
     spec.orientation = r.part.orientation;
     spec.velocity = r.part.velocity;
     ids.push_back(world.addBody(spec));
-    pack->names_.push_back(r.part.name);
-    pack->fixed_.push_back(r.fixed);
     pack->start_.push_back(world.bodies().position(ids.back()));
     log->info("rigid body '{}': {} of {} m^3, {}, level set cells of {:.4g} m", r.part.name, r.part.shape,
               r.part.volume,
@@ -146,7 +145,7 @@ void DeformRigidPack::stage() const {
   c.state = world_->captureState();
   c.sceneFingerprint = simulation::fingerprintOf(identity_);
   c.sceneIdentity = identity_;
-  c.bodyNames = names_;
+  for (simulation::BodyId b = 0; b < world_->bodies().size(); ++b) c.bodyNames.push_back(world_->bodies().info(b).name);
   simulation::writeCheckpoint(nextCheckpointPath(out_), c);
 }
 
@@ -169,20 +168,10 @@ void DeformRigidPack::removeCheckpoints(const fs::path& out) {
 io::BodyFrame DeformRigidPack::frame() const {
   io::BodyFrame f;
   f.time = world_->time();
-  const auto& bodies = world_->bodies();
-  for (simulation::BodyId b = 0; b < bodies.size(); ++b) {
-    io::BodySnapshot s;
+  for (simulation::BodyId b = 0; b < world_->bodies().size(); ++b) {
+    io::BodySnapshot s = simulation::bodySnapshot(*world_, b); // external_force: the deformable body's load
     s.id = static_cast<std::int32_t>(b);
-    s.position = bodies.position(b);
-    s.orientation = bodies.orientation(b);
-    s.velocity = bodies.velocity(b);
-    s.angularVelocity = bodies.worldAngularVelocity(b);
-    s.contactCount = world_->contactCount(b);
-    s.maxContactForce = world_->maxContactForce(b);
-    s.externalForce = world_->externalForce(b); // the deformable body's load
-    s.surface = &world_->shape(world_->bodyShape(b)).mesh;
-    s.scale = world_->bodyScale(b);
-    s.fixed = fixed_[b];
+    s.fixed = world_->bodies().motionType(b) == dynamics::MotionType::Static;
     f.bodies.push_back(s);
   }
   return f;
@@ -203,15 +192,16 @@ void DeformRigidPack::logEnd(const std::shared_ptr<spdlog::logger>& log) const {
   const auto& loads = body_->obstacleLoads();
   for (simulation::BodyId b = 0; b < bodies.size(); ++b) {
     const simulation::Vec3 f = b < loads.size() ? loads[b].force : simulation::Vec3::Zero();
-    if (fixed_[b]) {
-      log->info("rigid body '{}' (fixed) carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", names_[b],
+    const std::string& name = bodies.info(b).name;
+    if (bodies.motionType(b) == dynamics::MotionType::Static) {
+      log->info("rigid body '{}' (fixed) carries [{:.6g}, {:.6g}, {:.6g}] N from the deformable bodies", name,
                 f.x(), f.y(), f.z());
       continue;
     }
     const simulation::Vec3 u = bodies.position(b) - start_[b];
     log->info("rigid body '{}' moved [{:.6g}, {:.6g}, {:.6g}] m, speed {:.4g} m/s; it carries [{:.6g}, {:.6g}, "
               "{:.6g}] N from the deformable bodies",
-              names_[b], u.x(), u.y(), u.z(), bodies.velocity(b).norm(), f.x(), f.y(), f.z());
+              name, u.x(), u.y(), u.z(), bodies.velocity(b).norm(), f.x(), f.y(), f.z());
   }
   log->info("rigid frames: {}; rigid state: {}", (out_ / "rigid" / "bodies.pvd").string(), checkpointPath(out_).string());
 }

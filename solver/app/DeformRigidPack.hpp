@@ -73,8 +73,6 @@ private:
   std::shared_ptr<simulation::DeformableCoupling> coupling_;
   std::unique_ptr<io::VtkFrameWriter> frames_; ///< made at the first frame
   std::optional<double> resumeTime_;           ///< set by restore()
-  std::vector<std::string> names_;      ///< scene names of the World's bodies
-  std::vector<bool> fixed_;             ///< per World body
   std::vector<simulation::Vec3> start_; ///< initial positions (unit: m)
   std::string identity_;                ///< what the World computes, for the checkpoint
   std::filesystem::path out_;

@@ -279,6 +279,9 @@ bool startFromInitialState(const io::Scene& scene, simulation::World& world) {
   return c.applicationState == contactModel;
 }
 
+/// The run's checkpoint: <output folder>/checkpoint.nc.
+fs::path checkpointPathOf(const io::Scene& scene) { return scene.output.folder / "checkpoint.nc"; }
+
 /// The scene of a run: read with --set, then --duration, --storm and -o applied.
 io::Scene readRunScene(const RunRequest& o) {
   if (o.threads < 0) {
@@ -305,7 +308,7 @@ io::Scene readRunScene(const RunRequest& o) {
 /// restart leaves the run as it was), and the previous log kept; then the output folder made.
 std::optional<simulation::Checkpoint> openRunFolder(const io::Scene& scene, const RunRequest& o,
                                                     const std::string& fingerprint, const std::string& identity) {
-  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path checkpointPath = checkpointPathOf(scene);
   std::optional<simulation::Checkpoint> restart;
   if (o.restart) {
     restart = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
@@ -350,7 +353,7 @@ void startWorld(const io::Scene& scene, const simulation::BuiltScene& built,
     }
     return;
   }
-  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path checkpointPath = checkpointPathOf(scene);
   try {
     world.restoreState(restart->state);
   } catch (const core::InputError& e) {
@@ -397,7 +400,7 @@ RunTally stepToEnd(const io::Scene& scene, const simulation::BuiltScene& built, 
                    const RunCheckpoints& checkpoints, const CheckpointPlan& plan, simulation::DomainWatch& domainWatch,
                    const StopSignals& signals, bool restarted, const std::shared_ptr<spdlog::logger>& log) {
   simulation::World& world = *built.world;
-  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path checkpointPath = checkpointPathOf(scene);
   const double dt = world.timeStep();
   const double end = scene.duration;
   RunTally tally;
@@ -482,7 +485,7 @@ RunTally stepToEnd(const io::Scene& scene, const simulation::BuiltScene& built, 
 [[noreturn]] void stopOnSignal(const RunRequest& o, const io::Scene& scene, const simulation::World& world,
                                simulation::RunOutputs& outputs, const RunCheckpoints& checkpoints, int signal,
                                const std::shared_ptr<spdlog::logger>& log) {
-  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path checkpointPath = checkpointPathOf(scene);
   outputs.close();
   checkpoints.write(checkpointPath, world, outputs);
   std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
@@ -531,14 +534,14 @@ void logRunEnd(const RunRequest& o, const io::Scene& scene, const simulation::Wo
             profile);
   if (o.profile) std::cout << profile << std::flush;
   log->info("wrote {} VTK frames, {} series records, {} and {}", outputs.vtkFrames(), outputs.seriesRecords(),
-            (scene.output.folder / "final_state.csv").string(), (scene.output.folder / "checkpoint.nc").string());
+            (scene.output.folder / "final_state.csv").string(), checkpointPathOf(scene).string());
 }
 
 } // namespace
 
 void runScene(const RunRequest& o) {
   io::Scene scene = readRunScene(o);
-  const fs::path checkpointPath = scene.output.folder / "checkpoint.nc";
+  const fs::path checkpointPath = checkpointPathOf(scene);
   // What the run computes, to recognise its checkpoints: duration and output settings excluded.
   const std::string identity = simulation::sceneIdentity(scene);
   const std::string fingerprint = simulation::fingerprintOf(identity);

@@ -135,23 +135,28 @@ RunOutputs::RunOutputs(const io::Scene& scene, const BuiltScene& built, const Ru
 
 RunOutputs::~RunOutputs() = default;
 
+io::BodySnapshot bodySnapshot(const World& world, BodyId b) {
+  const auto& bodies = world.bodies();
+  io::BodySnapshot s;
+  s.position = bodies.position(b);
+  s.orientation = bodies.orientation(b);
+  s.velocity = bodies.velocity(b);
+  s.angularVelocity = bodies.worldAngularVelocity(b);
+  s.contactCount = world.contactCount(b);
+  s.maxContactForce = world.maxContactForce(b);
+  s.externalForce = world.externalForce(b);
+  s.surface = &world.shape(world.bodyShape(b)).mesh; // body (principal) frame, like the orientation
+  s.scale = world.bodyScale(b);
+  return s;
+}
+
 io::BodyFrame RunOutputs::frame(const World& world) const {
   io::BodyFrame f;
   f.time = world.time();
-  const auto& bodies = world.bodies();
   for (std::size_t i = 0; i < built_.bodyIndexOfSceneBody.size(); ++i) {
     const BodyId b = built_.bodyIndexOfSceneBody[i];
-    io::BodySnapshot s;
+    io::BodySnapshot s = bodySnapshot(world, b);
     s.id = static_cast<std::int32_t>(i);
-    s.position = bodies.position(b);
-    s.orientation = bodies.orientation(b);
-    s.velocity = bodies.velocity(b);
-    s.angularVelocity = bodies.worldAngularVelocity(b);
-    s.contactCount = world.contactCount(b);
-    s.maxContactForce = world.maxContactForce(b);
-    s.externalForce = world.externalForce(b);
-    s.surface = &world.shape(world.bodyShape(b)).mesh; // body (principal) frame, like the orientation
-    s.scale = world.bodyScale(b);
     s.fixed = scene_.bodies[i].fixed;
     f.bodies.push_back(s);
   }

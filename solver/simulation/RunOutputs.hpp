@@ -54,6 +54,11 @@ struct RunProvenance {
   std::vector<std::string> sets;     ///< the --set KEY=VALUE changes it was read with (`scene_sets`)
 };
 
+/// Body b of `world` as a frame shows it: pose, velocities, contact counts, the load stages'
+/// force, and its surface (the shape's mesh in the body frame, with its scale). Id and `fixed` are
+/// the caller's (scene ids differ from World ids).
+[[nodiscard]] io::BodySnapshot bodySnapshot(const World& world, BodyId b);
+
 class RunOutputs {
 public:
   /// Open the writers in scene.output.folder. bodies.nc records the provenance and, for a storm

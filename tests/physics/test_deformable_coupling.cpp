@@ -39,6 +39,19 @@ std::unique_ptr<deformable::DeformableBody> cubeAt(const Vec3& corner, double si
   return std::make_unique<deformable::DeformableBody>(std::move(mesh), s, "test cube");
 }
 
+/// A free concrete (2 340 kg/m^3) rigid body of `mesh` in `world`, its centroid at `position`.
+BodyId addConcreteBlock(World& world, const geometry::TriangleMesh& mesh, const Vec3& position,
+                        double restitution = 0.05) {
+  Material concrete;
+  concrete.density = 2340.0;
+  concrete.restitution = restitution;
+  BodySpec spec;
+  spec.material = world.addMaterial(concrete);
+  spec.shape = world.addShape("block", mesh);
+  spec.position = position;
+  return world.addBody(spec);
+}
+
 Vec3 momentum(const deformable::DeformableBody& d) {
   Vec3 p = Vec3::Zero();
   for (std::size_t a = 0; a < d.nodeCount(); ++a) p += d.masses()[a] * d.velocities()[a];
@@ -58,14 +71,7 @@ TEST(DeformableCoupling, AnOffCentreImpactExchangesMomentumAndKeepsTheEnergy) {
   auto cube = cubeAt(Vec3(-1.02, 0.05, -0.25), 0.5, 2, ws.gravity);
   ws.timeStep = cube->stableStep().dt;
   World world(ws);
-  Material concrete;
-  concrete.density = 2340.0;
-  const MaterialId m = world.addMaterial(concrete);
-  const ShapeId box = world.addShape("block", armour::test::makeBox(1.0, 1.0, 1.0));
-  BodySpec spec;
-  spec.shape = box;
-  spec.material = m;
-  const BodyId block = world.addBody(spec); // centred on the origin: its face x = -0.5
+  const BodyId block = addConcreteBlock(world, armour::test::makeBox(1.0, 1.0, 1.0), Vec3::Zero()); // face x = -0.5
   auto coupling = std::make_shared<DeformableCoupling>(*cube, std::vector<BodyId>{block});
   world.addLoadStage(coupling);
   std::vector<Vec3> v(cube->nodeCount(), Vec3(2.0, 0.0, 0.0));
@@ -107,17 +113,8 @@ TEST(DeformableCoupling, ACubeRestsOnAFreeBlockOnTheFloor) {
   auto cube = cubeAt(Vec3(-0.25, -0.25, 0.5005), 0.5, 2, ws.gravity, 200.0); // mass damping: to rest (ours)
   ws.timeStep = cube->stableStep().dt;
   World world(ws);
-  Material concrete;
-  concrete.density = 2340.0;
-  concrete.restitution = 0.05;
-  const MaterialId m = world.addMaterial(concrete);
-  const ShapeId slab = world.addShape("block", armour::test::makeBox(2.0, 2.0, 0.5));
-  BodySpec spec;
-  spec.shape = slab;
-  spec.material = m;
-  spec.position = Vec3(0.0, 0.0, 0.25);
-  const BodyId block = world.addBody(spec);
-  world.addPlane(StaticPlane{"floor", Vec3::Zero(), Vec3::UnitZ(), m});
+  const BodyId block = addConcreteBlock(world, armour::test::makeBox(2.0, 2.0, 0.5), Vec3(0.0, 0.0, 0.25));
+  world.addPlane(StaticPlane{"floor", Vec3::Zero(), Vec3::UnitZ(), MaterialId{0}}); // the block's concrete, the World's first
   world.addLoadStage(std::make_shared<DeformableCoupling>(*cube, std::vector<BodyId>{block}));
   while (world.time() < 0.3) world.step();
 
