@@ -2,13 +2,16 @@
 #include "app/EnsembleCommands.hpp"
 
 #include "app/PackAnalysis.hpp"
+#include "app/PlacementCheckpoint.hpp"
 #include "app/RunCommands.hpp"
+#include "app/StopSignals.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 #include "io/SceneOverrides.hpp"
 #include "io/SceneReader.hpp"
 #include "placement/PlacedScene.hpp"
 #include "placement/Placer.hpp"
+#include "simulation/CheckpointFile.hpp"
 #include "simulation/World.hpp"
 #include "storm/StormFile.hpp"
 
@@ -53,7 +56,106 @@ struct EnsembleOptions {
   std::optional<double> duration;  ///< simulated storm time (unit: s); default: to the storm's end
   std::optional<double> timeOffset; ///< storm time at simulation time 0 (unit: s)
   bool plots = false;
+  bool restart = false;            ///< continue a stopped ensemble in the same --output
+  double checkpointMinutes = 10.0; ///< wall time between a placement's checkpoints (unit: min); 0 = only when stopped
 };
+
+/// The command that continues a stopped ensemble (the same options, and --restart).
+std::string restartCommand(const EnsembleOptions& o, const fs::path& folder) {
+  std::string again = fmt::format("armour ensemble {} --restart --runs {} --first-seed {}", o.file, o.runs, o.firstSeed);
+  for (const std::string& storm : o.storms) again += " --storm " + storm;
+  if (!o.storms.empty())
+    again += fmt::format(" --realisations {} --first-storm-seed {}", o.realisations, o.firstStormSeed);
+  if (o.duration) again += fmt::format(" --duration {}", *o.duration);
+  if (o.timeOffset) again += fmt::format(" --time-offset {}", *o.timeOffset);
+  if (o.threads > 0) again += fmt::format(" --threads {}", o.threads);
+  again += fmt::format(" --output {} --axis {}", folder.string(), o.axis);
+  for (const std::string& set : o.sets) again += " --set " + set;
+  if (o.plots) again += " --plots";
+  return again;
+}
+
+/// Thrown when a stop signal ended a member's placement or storm run: the ensemble stops too.
+struct EnsembleStopped : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Thrown when --restart finds a member's record or checkpoint made from other inputs: the whole
+/// ensemble is refused (exit 2), no member is recorded as failed and no table is written.
+struct RestartRefused : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// ---- Members' records ------------------------------------------------------------------------
+// A member's measures are kept in its folder when it ends (measures.csv: "key,value" lines), so that
+// a restarted ensemble reads them back instead of running the member again. The fingerprint ties
+// them to the member's inputs; the values are written as the shortest text that reads back to the
+// same double, so a continued ensemble's tables equal an uninterrupted one's.
+
+struct MemberRecord {
+  std::vector<double> values;
+  std::string unitPrefix; ///< the packing's unit names' prefix (for its storm runs)
+};
+
+void writeRecord(const fs::path& file, const std::string& fingerprint, const std::vector<std::string>& names,
+                 const MemberRecord& r) {
+  core::writeFileAtomically(file, [&](std::ostream& out) {
+    out << "# a member of `armour ensemble` that finished: its measures, read back by --restart\n";
+    out << "fingerprint," << fingerprint << "\nunit_prefix," << r.unitPrefix << "\n";
+    for (std::size_t k = 0; k < names.size(); ++k) out << names[k] << "," << fmt::format("{}", r.values[k]) << "\n";
+  });
+}
+
+/// The record of a member that finished before, or nothing when there is none. Throws
+/// core::InputError when it was made from other inputs, or is not whole.
+std::optional<MemberRecord> readRecord(const fs::path& file, const std::string& fingerprint,
+                                       const std::vector<std::string>& names) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  std::map<std::string, std::string> fields;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t comma = line.find(',');
+    if (comma != std::string::npos) fields[line.substr(0, comma)] = line.substr(comma + 1);
+  }
+  if (fields["fingerprint"] != fingerprint)
+    throw RestartRefused(fmt::format("{}: was written by an ensemble of other inputs (another placement file, --set, --axis, "
+                                   "storm file or duration: fingerprint {} against {}); continue with the options "
+                                   "the ensemble was started with, or start anew without --restart in another --output",
+                    file.string(), fields["fingerprint"], fingerprint));
+  MemberRecord r;
+  r.unitPrefix = fields["unit_prefix"];
+  for (const std::string& name : names) {
+    const auto it = fields.find(name);
+    char* end = nullptr;
+    const double v = it == fields.end() ? 0.0 : std::strtod(it->second.c_str(), &end);
+    if (it == fields.end() || end == it->second.c_str() || *end != '\0')
+      throw RestartRefused(fmt::format("{}: has no readable value of '{}'; delete the file to run the member again",
+                                       file.string(), name));
+    r.values.push_back(v);
+  }
+  return r;
+}
+
+/// The fingerprint of a packing: the placement file as the member runs it (with its seed) and the
+/// axis its P2 is measured on.
+std::string packingFingerprint(const std::string& memberText, const std::string& axis) {
+  return simulation::fingerprintOf("packing\n" + memberText + "\naxis " + axis + "\n");
+}
+
+/// The fingerprint of a storm member: its packing's, the storm file (path, size and time of its
+/// last change), the storm time replayed and the variability seed.
+std::string stormFingerprint(const std::string& packing, const EnsembleOptions& o, const std::string& stormFile,
+                             std::uint64_t stormSeed) {
+  std::error_code ec;
+  const auto size = fs::file_size(stormFile, ec);
+  const auto changed = fs::last_write_time(stormFile, ec).time_since_epoch().count();
+  return simulation::fingerprintOf(fmt::format("storm\n{}\n{}\n{} bytes, changed {}\nduration {}\noffset {}\nseed {}\n",
+                                               packing, fs::absolute(stormFile).string(), size, changed,
+                                               o.duration ? fmt::format("{}", *o.duration) : "to the end",
+                                               o.timeOffset ? fmt::format("{}", *o.timeOffset) : "the scene's", stormSeed));
+}
 
 /// The ranks of an MPI job, or one rank without MPI (or when the program was not started by
 /// mpirun: Open MPI then runs it as a singleton of size 1).
@@ -165,18 +267,47 @@ const std::vector<std::string>& stormMeasures() {
   return names;
 }
 
-/// Place the member's packing and measure it; the placed scene is member/placed.yaml.
-std::vector<double> placeMember(const EnsembleOptions& o, const std::string& text, const fs::path& source,
-                                const Member& m, std::string& unitPrefix) {
+/// The placement file as member `m` runs it: the --set changes and its seed. The seed drives the
+/// height field, the jitter, the orientations and the rocks, unless the file fixes their own.
+std::string memberText(const EnsembleOptions& o, const std::string& text, const Member& m) {
   std::vector<std::string> sets = o.sets;
-  // The seed drives the height field, the jitter, the orientations and the rocks, unless the file
-  // fixes their own.
   sets.push_back(fmt::format("seed={}", m.seed));
-  const std::string memberText = io::applyOverridesToText(text, sets, o.file);
-  const io::Scene scene = io::parseScene(memberText, source.parent_path(), source.filename().string());
+  return io::applyOverridesToText(text, sets, o.file);
+}
+
+/// Place the member's packing and measure it; the placed scene is member/placed.yaml. The placement
+/// checkpoints into member/place-checkpoint.nc (every --checkpoint-minutes, and when stopped by a
+/// signal: then EnsembleStopped), and with --restart continues from it.
+std::vector<double> placeMember(const EnsembleOptions& o, const std::string& text, const fs::path& source,
+                                const Member& m, std::string& unitPrefix, const StopSignals& signals) {
+  const io::Scene scene = io::parseScene(text, source.parent_path(), source.filename().string());
   if (!scene.placement.enabled) core::failInput(o.file, "no placement: block; `armour ensemble` places each member");
-  const placement::PlacementResult placed = placement::place(scene);
-  placement::writePlacementOutputs(memberText, placed, m.folder / "placed.yaml", m.folder);
+  fs::create_directories(m.folder);
+  PlacementCheckpoint checkpoint(scene, text, m.folder / "place-checkpoint.nc");
+  std::optional<placement::PlacementProgress> resume;
+  if (o.restart && fs::exists(checkpoint.path())) {
+    try {
+      resume = checkpoint.read();
+    } catch (const core::InputError& e) {
+      throw RestartRefused(e.what());
+    }
+    std::cout << fmt::format("  continuing its placement from {} ({} units placed)\n", checkpoint.path().string(),
+                             resume->unitsDone)
+              << std::flush;
+  }
+  placement::PlaceOptions options;
+  if (resume) options.resume = &*resume;
+  options.safePoint = checkpoint.safePoint(signals, o.checkpointMinutes);
+  placement::PlacementResult placed;
+  try {
+    placed = placement::place(scene, {}, options);
+  } catch (const placement::PlacementStopped&) {
+    throw EnsembleStopped(fmt::format("while placing packing seed {} (its checkpoint: {})", m.seed,
+                                      checkpoint.path().string()));
+  }
+  placement::writePlacementOutputs(text, placed, m.folder / "placed.yaml", m.folder);
+  std::error_code ec;
+  fs::remove(checkpoint.path(), ec); // the placed scene is the result now
   // Displacements from where each unit was released (seed 001 test 3: the crane positions).
   PoseMap release;
   for (const auto& u : placed.units) release[u.name] = {u.gridPoint, u.releaseOrientation};
@@ -197,7 +328,8 @@ std::vector<double> placeMember(const EnsembleOptions& o, const std::string& tex
 }
 
 /// Replay the member's storm on its placed scene and measure the damage (from the placed poses).
-std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int threads, const std::string& unitPrefix) {
+std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int threads, const std::string& unitPrefix,
+                                const StopSignals& signals) {
   const fs::path placedScene = m.folder / "placed.yaml";
   RunRequest run;
   run.scene = placedScene.string();
@@ -210,7 +342,23 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
     run.durationGiven = true;
   }
   run.variabilitySeed = m.stormSeed;
-  runScene(run);
+  // A run that failed left a checkpoint of its failed step, which cannot be continued: run it anew.
+  run.restart = o.restart && fs::exists(m.run / "checkpoint.nc") && !fs::exists(m.run / "error.txt");
+  std::error_code ec;
+  fs::remove(m.run / "error.txt", ec);
+  if (run.restart) std::cout << fmt::format("  continuing its storm run from {}\n", (m.run / "checkpoint.nc").string()) << std::flush;
+  try {
+    runScene(run);
+  } catch (const core::InputError& e) {
+    // The scene was read before: what a restarted run refuses is its checkpoint (another scene).
+    if (run.restart) throw RestartRefused(e.what());
+    throw;
+  } catch (const CLI::RuntimeError&) {
+    if (signals.received() != 0)
+      throw EnsembleStopped(fmt::format("in the storm run {} (its checkpoint: {})", m.run.string(),
+                                        (m.run / "checkpoint.nc").string()));
+    throw;
+  }
   const io::Scene scene = io::readScene(placedScene);
   const PoseMap before = posesOf(scene);
   const PoseMap after = readPoses(m.run / "final_state.csv");
@@ -236,8 +384,95 @@ void writeError(const fs::path& folder, const std::string& message) {
   core::writeFileAtomically(folder / "error.txt", [&](std::ostream& out) { out << message << "\n"; });
 }
 
+/// Member m's packing: its measures and its units' name prefix, read from its record (--restart)
+/// or placed now and recorded.
+MemberRecord packingOf(const EnsembleOptions& o, const std::string& text, const fs::path& source, const Member& m,
+                       const StopSignals& signals, std::string& fingerprint) {
+  const std::string placementText = memberText(o, text, m);
+  fingerprint = packingFingerprint(placementText, o.axis);
+  const fs::path file = m.folder / "measures.csv";
+  if (o.restart) {
+    if (std::optional<MemberRecord> r = readRecord(file, fingerprint, placementMeasures())) {
+      std::cout << fmt::format("  packing seed {}: placed before ({})\n", m.seed, file.string()) << std::flush;
+      return *r;
+    }
+  }
+  if (signals.received() != 0) throw EnsembleStopped(fmt::format("before placing packing seed {}", m.seed));
+  std::error_code ec;
+  fs::remove(m.folder / "error.txt", ec);
+  MemberRecord r;
+  r.values = placeMember(o, placementText, source, m, r.unitPrefix, signals);
+  writeRecord(file, fingerprint, placementMeasures(), r);
+  return r;
+}
+
+/// Member m's storm measures, read from its record (--restart) or run now and recorded.
+std::vector<double> stormOf(const EnsembleOptions& o, const Member& m, int threads, const MemberRecord& packing,
+                            const std::string& packingFingerprint, const StopSignals& signals) {
+  const std::string& file = o.storms[static_cast<std::size_t>(m.storm)];
+  const std::string fingerprint = stormFingerprint(packingFingerprint, o, file, m.stormSeed);
+  const fs::path record = m.run / "measures.csv";
+  if (o.restart) {
+    if (std::optional<MemberRecord> r = readRecord(record, fingerprint, stormMeasures())) {
+      std::cout << fmt::format("  stormed before ({})\n", record.string()) << std::flush;
+      return r->values;
+    }
+  }
+  if (signals.received() != 0) throw EnsembleStopped(fmt::format("before the storm run {}", m.run.string()));
+  std::vector<double> values = stormMember(o, m, threads, packing.unitPrefix, signals);
+  writeRecord(record, fingerprint, stormMeasures(), {values, packing.unitPrefix});
+  return values;
+}
+
+/// This rank's members [first, last): each one's row of `table` gets its measures and its status
+/// (1 done, 0 failed). A member that fails (its dynamics stopped: the run wrote its state and log)
+/// is recorded and the others go on: its row is empty and its error.txt says why. The other ranks
+/// must reach the gathering after this, so no member's failure may end the loop; a stop signal
+/// does (EnsembleStopped), as it reaches every rank of mpirun.
+void runMembers(const EnsembleOptions& o, const std::string& text, const fs::path& source,
+                const std::vector<Member>& members, std::size_t first, std::size_t last, int threads, int rank,
+                const StopSignals& signals, std::vector<double>& table, std::size_t width) {
+  int placedPacking = -1; // the packing this rank holds, reused by its next member on the same packing
+  MemberRecord packing;
+  std::string fingerprint;
+  for (std::size_t i = first; i < last; ++i) {
+    const Member& m = members[i];
+    std::cout << fmt::format("[rank {}] member {}/{}: packing seed {}{}\n", rank, i + 1, members.size(), m.seed,
+                             m.storm >= 0 ? fmt::format(", storm {} variability seed {}",
+                                                        o.storms[static_cast<std::size_t>(m.storm)], m.stormSeed)
+                                          : std::string())
+              << std::flush;
+    double* row = &table[i * width];
+    try {
+      if (placedPacking != m.packing) {
+        placedPacking = -1; // until this placement succeeds
+        packing = packingOf(o, text, source, m, signals, fingerprint);
+        placedPacking = m.packing;
+      }
+      std::vector<double> values = packing.values;
+      if (m.storm >= 0) {
+        const std::vector<double> damage = stormOf(o, m, threads, packing, fingerprint, signals);
+        values.insert(values.end(), damage.begin(), damage.end());
+      }
+      std::copy(values.begin(), values.end(), row);
+      row[width - 1] = 1.0;
+    } catch (const EnsembleStopped&) {
+      throw;
+    } catch (const RestartRefused&) {
+      throw;
+    } catch (const std::exception& e) {
+      const std::string message = fmt::format("member {} (packing seed {}) failed: {} (see its folder's logs)", i,
+                                              m.seed, e.what());
+      std::cerr << message << "\n";
+      writeError(m.run.empty() ? m.folder : m.run, message);
+      for (std::size_t c = 0; c + 1 < width; ++c) row[c] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+}
+
 void ensemble(const EnsembleOptions& o) {
   const Ranks ranks;
+  const StopSignals signals;
   if (o.runs < 1) core::failInput("--runs", "{}: give at least one member", o.runs);
   if (o.realisations < 1) core::failInput("--realisations", "{}: give at least one per storm file", o.realisations);
   if (o.threads < 0) core::failInput("--threads", "{}: give a positive number of threads, or 0", o.threads);
@@ -264,6 +499,12 @@ void ensemble(const EnsembleOptions& o) {
   // The file is read and checked by every rank before any work: a bad file stops all of them.
   (void)io::parseScene(io::applyOverridesToText(text, o.sets, o.file), source.parent_path(),
                        source.filename().string());
+  if (!(o.checkpointMinutes >= 0.0) || !std::isfinite(o.checkpointMinutes))
+    core::failInput("--checkpoint-minutes", "{}: give the wall time between checkpoints in minutes (>= 0; 0 = only "
+                                            "when stopped by SIGINT or SIGTERM)", o.checkpointMinutes);
+  if (o.restart && !fs::is_directory(folder))
+    core::failInput(folder.string(), "does not exist, so there is no ensemble to continue; start it without --restart "
+                                     "(or give the --output of the stopped one)");
   fs::create_directories(folder);
 
   std::vector<Member> members;
@@ -297,38 +538,15 @@ void ensemble(const EnsembleOptions& o) {
   // which places the packing once.
   const std::size_t ranksCount = static_cast<std::size_t>(ranks.size()), rank = static_cast<std::size_t>(ranks.rank());
   const std::size_t first = members.size() * rank / ranksCount, last = members.size() * (rank + 1) / ranksCount;
-  PlacedPacking placed;
-  for (std::size_t i = first; i < last; ++i) {
-    const Member& m = members[i];
-    std::cout << fmt::format("[rank {}] member {}/{}: packing seed {}{}\n", ranks.rank(), i + 1, members.size(), m.seed,
-                             m.storm >= 0 ? fmt::format(", storm {} variability seed {}",
-                                                        o.storms[static_cast<std::size_t>(m.storm)], m.stormSeed)
-                                          : std::string())
-              << std::flush;
-    double* row = &table[i * width];
-    try {
-      if (placed.packing != m.packing) {
-        placed.packing = -1; // until this placement succeeds
-        placed.values = placeMember(o, text, source, m, placed.unitPrefix);
-        placed.packing = m.packing;
-      }
-      std::vector<double> values = placed.values;
-      if (m.storm >= 0) {
-        const std::vector<double> damage = stormMember(o, m, threads, placed.unitPrefix);
-        values.insert(values.end(), damage.begin(), damage.end());
-      }
-      std::copy(values.begin(), values.end(), row);
-      row[width - 1] = 1.0;
-    } catch (const std::exception& e) {
-      // A member that fails (its dynamics stopped: the run wrote its state and log) is recorded and
-      // the ensemble goes on: its row is empty and its error.txt says why. The other ranks must
-      // reach the gathering below, so no member's failure may end this rank's loop.
-      const std::string message = fmt::format("member {} (packing seed {}) failed: {} (see its folder's logs)", i,
-                                              m.seed, e.what());
-      std::cerr << message << "\n";
-      writeError(m.run.empty() ? m.folder : m.run, message);
-      for (std::size_t c = 0; c + 1 < width; ++c) row[c] = std::numeric_limits<double>::quiet_NaN();
-    }
+  try {
+    runMembers(o, text, source, members, first, last, threads, ranks.rank(), signals, table, width);
+  } catch (const EnsembleStopped& e) {
+    std::cerr << fmt::format("{}: stopped by {} {}; the members that finished are recorded in their folders\n"
+                             "continue with: {}\n",
+                             o.file, signalName(signals.received()), e.what(), restartCommand(o, folder));
+    throw CLI::RuntimeError(kExitStopped);
+  } catch (const RestartRefused& e) {
+    core::failInput("--restart", "{}", e.what());
   }
   ranks.sum(table); // each row is filled by exactly one rank, zeros elsewhere
   if (ranks.rank() != 0) return;
@@ -406,6 +624,13 @@ void addEnsembleCommands(CLI::App& app, const GlobalOptions& /*global*/) {
   cmd->add_option("--axis", e->axis, "unit axis for P2")->capture_default_str();
   addSetOption(*cmd, e->sets);
   cmd->add_flag("--plots", e->plots, "also draw the spread plot (utilities/plot_ensemble.py, matplotlib)");
+  cmd->add_flag("--restart", e->restart,
+                "continue a stopped ensemble in its --output folder: members that finished are read back from "
+                "their measures.csv, a placement continues from its place-checkpoint.nc, a storm run from its "
+                "checkpoint.nc");
+  cmd->add_option("--checkpoint-minutes", e->checkpointMinutes,
+                  "wall time between a placement's checkpoints (min); 0 = only when stopped by SIGINT or SIGTERM")
+      ->capture_default_str();
   cmd->callback([e] { ensemble(*e); });
 }
 

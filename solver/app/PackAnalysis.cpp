@@ -26,10 +26,11 @@ std::string json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : st
 
 /// The slope-normal height (frame coordinates, m) of a body's highest point: its mesh (principal
 /// frame at scale 1) scaled and placed at the body's pose.
-double topOf(const simulation::World& world, simulation::BodyId b, const analysis::SlopeFrame& frame) {
+/// The lowest and highest slope-normal coordinates of a body's surface (m).
+Eigen::Vector2d extentOf(const simulation::World& world, simulation::BodyId b, const analysis::SlopeFrame& frame) {
   geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
   for (auto& v : mesh.vertices) v *= world.bodyScale(b);
-  return analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame).y();
+  return analysis::normalExtent(mesh, world.bodies().position(b), world.bodies().orientation(b), frame);
 }
 
 /// The support bodies (every body that is not a unit: the rocks): where they sit, how high, and
@@ -176,6 +177,7 @@ void measureLayer(PackReport& r, const std::vector<Eigen::Vector3d>& positions, 
 void addUnitRows(PackReport& r, const io::Scene& scene, const simulation::BuiltScene& built,
                  const std::vector<std::size_t>& units, const std::vector<Eigen::Vector3d>& positions,
                  const std::vector<Eigen::Vector3d>& axes, const std::vector<double>& dn,
+                 const std::vector<double>& tops, const std::vector<double>& bottoms,
                  const analysis::SurfaceStones& supports) {
   for (std::size_t k = 0; k < units.size(); ++k) {
     UnitRow row;
@@ -192,6 +194,10 @@ void addUnitRows(PackReport& r, const io::Scene& scene, const simulation::BuiltS
     row.maxContactForce = c.maxForce;
     row.heightAboveUnderlayer = (row.local.z() - highestTopNear(supports, row.local, dn[k])) / dn[k];
     row.stacked = c.supportNeighbours == 0 && row.heightAboveUnderlayer > 1.0;
+    if (r.thickness) {
+      row.topAboveUnderlayer = (tops[k] - r.underlayerTop) / dn[k];
+      row.bottomAboveUnderlayer = (bottoms[k] - r.underlayerTop) / dn[k];
+    }
     r.touchingUnderlayer += c.supportNeighbours > 0 ? 1 : 0;
     r.stackedUnits += row.stacked ? 1 : 0;
     if (r.displacement) row.displacement = r.displacement->units[k];
@@ -292,8 +298,12 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
       // All units in a line: no area.
     }
   }
-  std::vector<double> tops;
-  for (std::size_t i : units) tops.push_back(topOf(world, built.bodyIndexOfSceneBody[i], r.frame));
+  std::vector<double> tops, bottoms;
+  for (std::size_t i : units) {
+    const Eigen::Vector2d e = extentOf(world, built.bodyIndexOfSceneBody[i], r.frame);
+    bottoms.push_back(e.x());
+    tops.push_back(e.y());
+  }
   const analysis::SurfaceStones supports = supportsOf(scene, built, units, r.frame);
   measureLayer(r, positions, tops, dn, supports);
   if (reference != nullptr) {
@@ -309,7 +319,7 @@ PackReport analysePack(const io::Scene& input, const AnalyseSettings& settings, 
     r.displacement = analysis::measureDisplacement(before, positions, qBefore, orientations, dn, r.frame,
                                                    settings.displacement);
   }
-  addUnitRows(r, scene, built, units, positions, axes, dn, supports);
+  addUnitRows(r, scene, built, units, positions, axes, dn, tops, bottoms, supports);
   return r;
 }
 
@@ -361,15 +371,16 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
   if (ec) core::failInput(folder.string(), "cannot create the output folder: {}", ec.message());
   core::writeFileAtomically(folder / "units.csv", [&](std::ostream& o) {
     o << "unit,x,y,z,s,t,dn,dip_deg,dip_azimuth_deg,stereo_x,stereo_y,contact_number,unit_neighbours,"
-         "support_neighbours,max_contact_force_N,height_above_underlayer_dn,stacked";
+         "support_neighbours,max_contact_force_N,height_above_underlayer_dn,stacked,top_above_underlayer_dn,bottom_above_underlayer_dn";
     if (r.displacement) o << ",disp_s,disp_t,disp_n,displacement_dn,rotation_deg,rocking";
     o << "\n";
     for (const UnitRow& u : r.units) {
-      o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", u.name, num(u.position.x()),
+      o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", u.name, num(u.position.x()),
                        num(u.position.y()), num(u.position.z()), num(u.local.x()), num(u.local.y()), num(u.dn),
                        num(u.attitude.dip * kDeg), num(u.attitude.dipAzimuth * kDeg), num(u.stereo.x()),
                        num(u.stereo.y()), u.contactNumber, u.unitNeighbours, u.supportNeighbours,
-                       num(u.maxContactForce), num(u.heightAboveUnderlayer), u.stacked ? 1 : 0);
+                       num(u.maxContactForce), num(u.heightAboveUnderlayer), u.stacked ? 1 : 0,
+                       num(u.topAboveUnderlayer), num(u.bottomAboveUnderlayer));
       if (u.displacement) {
         const auto& d = *u.displacement;
         o << fmt::format(",{},{},{},{},{},{}", num(d.local.x()), num(d.local.y()), num(d.local.z()), num(d.distanceDn),

@@ -60,6 +60,13 @@ struct UnitRow {
   /// the support bodies whose centroids lie within 1 Dn of the unit's in the slope plane, or the
   /// frame plane where there is none) (unit: Dn).
   double heightAboveUnderlayer = 0.0;
+  /// Slope-normal height of the unit's highest point above the layer's base (the mean top of the
+  /// underlayer's surface stones in the window, as the layer thickness is measured), NaN when the
+  /// layer was not measured: the per-unit terms of the layer thickness (unit: Dn).
+  double topAboveUnderlayer = std::nan("");
+  /// The same for the unit's lowest point: below zero where it reaches into the underlayer's
+  /// voids (unit: Dn).
+  double bottomAboveUnderlayer = std::nan("");
   /// No support touched and the centroid more than 1 Dn above the underlayer: a unit lying on
   /// others (issue 24; the guidance wants every unit of a single layer on the underlayer).
   bool stacked = false;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/PlaceCommands.hpp"
 
+#include "app/PlacementCheckpoint.hpp"
 #include "app/RunCommands.hpp"
 #include "app/StopSignals.hpp"
 #include "io/SceneOverrides.hpp"
@@ -81,23 +82,11 @@ void placeScene(const PlaceOptions& o) {
   // Checkpoints: the World's state plus the placement's own progress, for the scene as resolved
   // (its identity) and the placement file's text as run (with the --set changes).
   const std::string effectiveText = io::applyOverridesToText(text.str(), o.sets, o.file);
-  // Hydro settings do not act on a placement, and its storm file may not exist yet (written after
-  // the pack, as scripts/fidelity-ladder does): the identity leaves them out (the text keeps them).
-  io::Scene identified = scene;
-  static const hydro::HydroSettings kNoHydro; // a named default: GCC 12 warns (wrongly) of a temporary's
-  identified.hydro = kNoHydro;                // uninitialised string with -O2 -Wmaybe-uninitialized
-  const std::string identity = simulation::sceneIdentity(identified) + "# placement file as run\n" + effectiveText;
-  const std::string fingerprint = simulation::fingerprintOf(identity);
-  const fs::path checkpointPath = folder / "place-checkpoint.nc";
+  PlacementCheckpoint checkpoint(scene, effectiveText, folder / "place-checkpoint.nc");
   std::optional<placement::PlacementProgress> resume;
   if (o.restart) {
-    simulation::Checkpoint c = simulation::readCheckpoint(checkpointPath, {fingerprint, identity, 0});
-    if (c.applicationState.empty())
-      core::failInput(checkpointPath.string(), "is the checkpoint of a run, not of `armour place` (no application_state); "
-                                               "start the placement anew without --restart");
-    resume = placement::decodeProgress(c.applicationState, checkpointPath.string());
-    resume->world = std::move(c.state);
-    std::cout << fmt::format("continuing the placement from {} ({} units placed{})\n", checkpointPath.string(),
+    resume = checkpoint.read();
+    std::cout << fmt::format("continuing the placement from {} ({} units placed{})\n", checkpoint.path().string(),
                              resume->unitsDone, resume->finalSettle ? ", in the final settle" : "");
   }
   if (!(o.checkpointMinutes >= 0.0) || !std::isfinite(o.checkpointMinutes))
@@ -114,38 +103,22 @@ void placeScene(const PlaceOptions& o) {
                                            "output.folder=... to a writable place",
                           ec.message(), o.file);
   const StopSignals signals;
-  auto lastCheckpoint = std::chrono::steady_clock::now();
   placement::PlaceOptions options;
   if (resume) options.resume = &*resume;
-  options.safePoint = [&](const std::function<placement::PlacementProgress()>& capture) {
-    const bool stop = signals.received() != 0;
-    const auto now = std::chrono::steady_clock::now();
-    const bool due = o.checkpointMinutes > 0.0 &&
-                     std::chrono::duration<double>(now - lastCheckpoint).count() >= 60.0 * o.checkpointMinutes;
-    if (!stop && !due) return false;
-    placement::PlacementProgress p = capture();
-    simulation::Checkpoint c;
-    c.sceneFingerprint = fingerprint;
-    c.sceneIdentity = identity;
-    c.applicationState = placement::encodeProgress(p);
-    c.state = std::move(p.world);
-    simulation::writeCheckpoint(checkpointPath, c);
-    lastCheckpoint = std::chrono::steady_clock::now();
-    return stop;
-  };
+  options.safePoint = checkpoint.safePoint(signals, o.checkpointMinutes);
   placement::PlacementResult result;
   try {
     result = placement::place(scene, progress, options);
   } catch (const placement::PlacementStopped& e) {
     std::cerr << fmt::format("{}: {} by {}; checkpoint written to {}\ncontinue with: {}\n", o.file, e.what(),
-                             signalName(signals.received()), checkpointPath.string(), restartCommand(o));
+                             signalName(signals.received()), checkpoint.path().string(), restartCommand(o));
     throw CLI::RuntimeError(kExitStopped);
   } catch (const simulation::SimulationError& e) {
     std::cerr << "error: the placement stopped: " << e.what() << "\n";
     std::exit(3);
   }
   placement::writePlacementOutputs(effectiveText, result, scenePath, folder);
-  fs::remove(checkpointPath, ec); // the placed scene is the result now
+  fs::remove(checkpoint.path(), ec); // the placed scene is the result now
   std::cout << placement::summaryText(result);
   std::cout << fmt::format("placed scene: {}\ntables: {}/units.csv, placement.json, placement.txt\n",
                            scenePath.string(), folder.string());

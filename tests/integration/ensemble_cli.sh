@@ -8,7 +8,11 @@
 #  - the storm's variability is live: two seeds on the same packing give different damage, while the
 #    packing measures of the same packing are identical;
 #  - the damage counts are ordered (moved > 1 Dn <= moved > 0.5 Dn <= moved > 0.2 Dn);
-#  - --realisations on a storm without a variability model is refused, naming the file.
+#  - --realisations on a storm without a variability model is refused, naming the file;
+#  - stopped by SIGINT in a placement, it exits 130 with the command that continues; continued with
+#    --restart it reads the finished members back (not run again), continues the placement from
+#    its checkpoint, and ends with the uninterrupted ensemble's tables to the last bit; a restart
+#    with other inputs is refused, naming the member's record.
 # Arguments: the armour binary, the placement cases folder, a work folder.
 set -euo pipefail
 armour="$1"
@@ -66,4 +70,28 @@ PY
 for f in serial/member-000/placed.yaml serial/member-001/storm-0-seed-2/final_state.csv serial/member-001/storm-0-seed-2/run.log; do
   [ -s "$f" ] || fail "missing $f"
 done
+# Stopped and continued: checkpoints at every safe point of a placement, SIGINT as soon as the
+# second packing's placement has one (the first packing and its two storm runs are done by then).
+"$armour" --log-level warn "${common[@]}" --threads 1 --output stop --checkpoint-minutes 1e-9 > stop.txt 2> stop.err &
+pid=$!
+for _ in $(seq 1 1200); do [[ -e stop/member-001/place-checkpoint.nc ]] && break; sleep 0.05; done
+kill -INT "$pid"
+set +e; wait "$pid"; code=$?; set -e
+[[ $code -eq 130 ]] || fail "stopped by SIGINT: exit $code ($(cat stop.err))"
+grep -q "stopped by SIGINT while placing packing seed 2" stop.err || fail "the stop does not say where: $(cat stop.err)"
+grep -q "continue with: armour ensemble dolos.yaml --restart --runs 2 " stop.err || fail "no restart command: $(cat stop.err)"
+[[ -s stop/member-000/storm-0-seed-2/measures.csv ]] || fail "the finished members are not recorded"
+set +e; msg=$("$armour" "${common[@]}" --threads 1 --output stop --restart --set placement.crane.speed=0.4 2>&1); code=$?; set -e
+[[ $code -eq 2 ]] || fail "restart with another --set: exit $code: $msg"
+grep -q "member-000/measures.csv: was written by an ensemble of other inputs" <<< "$msg" || fail "unclear message: $msg"
+"$armour" --log-level warn "${common[@]}" --threads 1 --output stop --restart > restart.txt 2>&1 ||
+  fail "restart failed: $(tail -20 restart.txt)"
+[[ $(grep -c "placed before\|stormed before" restart.txt) -eq 3 ]] || fail "the finished members ran again: $(cat restart.txt)"
+grep -q "continuing its placement from .*member-001/place-checkpoint.nc" restart.txt || fail "the placement started anew"
+cmp serial/ensemble.csv stop/ensemble.csv || fail "the continued ensemble's members differ from the uninterrupted one's"
+cmp serial/ensemble.json stop/ensemble.json || fail "the continued ensemble's statistics differ"
+[[ ! -e stop/member-001/place-checkpoint.nc ]] || fail "the finished placement left its checkpoint"
+set +e; msg=$("$armour" "${common[@]}" --output nowhere --restart 2>&1); code=$?; set -e
+[[ $code -eq 2 ]] || fail "restart of an ensemble that never ran: exit $code"
+grep -q "nowhere: does not exist, so there is no ensemble to continue" <<< "$msg" || fail "unclear message: $msg"
 echo "ensemble_cli: OK"

@@ -156,6 +156,17 @@ static:
   EXPECT_NEAR(r.underlayerTop, 0.499, 1e-4);
   ASSERT_TRUE(r.thickness.has_value());
   EXPECT_NEAR(r.thickness->thickness, (0.999 + 0.999 + 1.998 + 1.497) / 4.0 - 0.499, 1e-4);
+  // Per unit, the top and the bottom above that base (Dn = 1 m): a cube lying on a face spans
+  // 1 Dn (to 1e-8 m: the scene's tilt of 26.565051 deg is atan(1/2) to 2e-9 rad), and the tops
+  // average to the thickness.
+  const double tops[] = {0.999 - 0.499, 0.999 - 0.499, 1.998 - 0.499, 1.497 - 0.499};
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_NEAR(r.units[k].topAboveUnderlayer, tops[k], 1e-4) << r.units[k].name;
+    EXPECT_NEAR(r.units[k].topAboveUnderlayer - r.units[k].bottomAboveUnderlayer, 1.0, 1e-8) << r.units[k].name;
+    sum += r.units[k].topAboveUnderlayer;
+  }
+  EXPECT_NEAR(sum / 4.0, r.thickness->thickness, 1e-12);
 }
 
 // A unit that fell off the edge of a slope's crest (beyond the static domain, on the seabed, as
