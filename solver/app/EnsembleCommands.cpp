@@ -256,7 +256,7 @@ const std::vector<std::string>& placementMeasures() {
   static const std::vector<std::string> names{
       "delta_rms_m",      "delta_rms_horizontal_m", "p2_mean_director",    "p2_q_tensor",
       "packing_density",  "layer_thickness_m",      "porosity",            "coordination_number",
-      "max_displacement_dn"};
+      "max_displacement_dn", "mean_contact_number",   "units_touching_underlayer", "stacked_units"};
   return names;
 }
 const std::vector<std::string>& stormMeasures() {
@@ -324,7 +324,10 @@ std::vector<double> placeMember(const EnsembleOptions& o, const std::string& tex
           placed.summary.layerThickness,
           placed.summary.porosity,
           report.contacts.coordinationNumber,
-          report.displacement->maxDn};
+          report.displacement->maxDn,
+          report.contacts.meanContactNumber,
+          static_cast<double>(report.touchingUnderlayer),
+          static_cast<double>(report.stackedUnits)};
 }
 
 /// Replay the member's storm on its placed scene and measure the damage (from the placed poses).

@@ -14,6 +14,7 @@
 
 #include "hydro/HydroSettings.hpp"
 #include "placement/PlacementSettings.hpp"
+#include "simulation/StepSettings.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -192,7 +193,7 @@ struct StaticGeometry {
 struct TimeStepSettings {
   bool automatic = true;           ///< choose dt from the contact stiffness and the lightest body
   double value = 0.0;              ///< fixed time step when !automatic (unit: s)
-  double safety = 0.2;             ///< fraction of the stability limit used when automatic (unit: -)
+  double safety = simulation::kTimeStepSafety; ///< fraction of the stability limit used when automatic (unit: -)
 };
 
 /// Which contact model the narrow phase uses (docs/theory.md, "Contact law" and "FDEM potential contact").
@@ -203,20 +204,6 @@ enum class ContactSolver { Penalty, Constraint };
 
 /// How the penalty law's dashpot is stepped (docs/theory.md section 6, "The dashpot over a step").
 enum class ContactDashpot { Explicit, Implicit };
-
-/// contact.constraint: the constraint solver's settings (simulation::ConstraintSettings holds
-/// the defaults and their provenance).
-struct ConstraintSolverSettings {
-  double timeStep = 1.0 / 200.0;     ///< step with time_step: auto (unit: s)
-  std::size_t substeps = 3;          ///< unit: -
-  double dampingRatio = 10.0;         ///< of each contact point's spring (unit: -); Box2D v3's default
-  double pushSpeed = 3.0;            ///< largest speed of the overlap push-out (unit: m/s)
-  double restitutionThreshold = 0.2; ///< unit: m/s
-  double speculativeMargin = 0.05;   ///< unit: Dn
-  double patchAngle = 0.5;           ///< unit: rad
-  bool frictionAnchors = false;      ///< slip of a sticking point is pulled back (theory.md, "Friction")
-  double reuseDistance = 0.001;      ///< unit: Dn; 0 = a full narrow phase for every pair at every step
-};
 
 /// Contact model and resolution, relative to each body's nominal diameter Dn = V^(1/3). The
 /// defaults are those of the contact stage (contact::SurfaceSampleSettings, contact::LevelSetSettings,
@@ -232,7 +219,7 @@ struct ContactSettings {
   /// penalty solver: explicit (the dashpot on the half-step velocity) or implicit (trapezoidal in
   /// the dashpot: a low restitution no longer shortens the automatic step, rebounds further from e).
   ContactDashpot dashpot = ContactDashpot::Explicit;
-  ConstraintSolverSettings constraint;
+  simulation::ConstraintSettings constraint; ///< contact.constraint: the constraint solver's settings
   /// fdem: tetrahedra per body before the deep ones are dropped (unit: -); seed 002: ~2500 per Core-Loc.
   std::size_t fdemElementsPerUnit = 2500;
   double sampleSpacing = 0.1;      ///< spacing of surface sample points / Dn (unit: -)

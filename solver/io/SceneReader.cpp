@@ -576,11 +576,12 @@ void readConstraintSettings(const Block& c, Scene& scene) {
   if (scene.contact.solver == ContactSolver::Constraint && scene.contact.model == ContactModel::Fdem)
     c.failValue("solver", "the constraint solver runs on the level-set narrow phase; use contact.model: levelset, "
                           "or contact.solver: penalty with fdem");
-  ConstraintSolverSettings& s = scene.contact.constraint;
-  constexpr Range kStep{1.0e-6, 1.0 / 30.0, false, false};
+  simulation::ConstraintSettings& s = scene.contact.constraint;
+  constexpr Range kStep{simulation::kMinConstraintStep, simulation::kMaxConstraintStep, false, false};
   s.timeStep = k.number("time_step", {"s", kStep, "0.005 (1/200 s), between 1e-6 and 1/30 s"}, s.timeStep);
-  s.substeps = k.integer("substeps", 1, "substeps per step, e.g. 4", s.substeps);
-  if (s.substeps > 64) k.failValue("substeps", "at most 64 substeps; use a smaller time_step instead");
+  const std::uint64_t substeps = k.integer("substeps", 1, "substeps per step, e.g. 4", static_cast<std::uint64_t>(s.substeps));
+  if (substeps > 64) k.failValue("substeps", "at most 64 substeps; use a smaller time_step instead");
+  s.substeps = static_cast<int>(substeps);
   s.dampingRatio = k.number("damping_ratio", {"-", kNonNegative, "10"}, s.dampingRatio);
   s.pushSpeed = k.number("push_speed", {"m/s", kPositive, "3"}, s.pushSpeed);
   s.restitutionThreshold = k.number("restitution_threshold", {"m/s", kNonNegative, "0.2"}, s.restitutionThreshold);

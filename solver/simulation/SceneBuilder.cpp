@@ -158,16 +158,7 @@ WorldSettings worldSettings(const io::Scene& scene) {
                                                                    : ContactSolverKind::Penalty;
   w.dashpot = scene.contact.dashpot == io::ContactDashpot::Implicit ? DashpotIntegration::Implicit
                                                                      : DashpotIntegration::Explicit;
-  const io::ConstraintSolverSettings& cs = scene.contact.constraint;
-  w.constraint.timeStep = cs.timeStep;
-  w.constraint.substeps = static_cast<int>(cs.substeps);
-  w.constraint.dampingRatio = cs.dampingRatio;
-  w.constraint.pushSpeed = cs.pushSpeed;
-  w.constraint.restitutionThreshold = cs.restitutionThreshold;
-  w.constraint.speculativeMargin = cs.speculativeMargin;
-  w.constraint.patchAngle = cs.patchAngle;
-  w.constraint.frictionAnchors = cs.frictionAnchors;
-  w.constraint.reuseDistance = cs.reuseDistance;
+  w.constraint = scene.contact.constraint;
   w.sleep.enabled = scene.sleep.enabled;
   w.sleep.linearSpeed = scene.sleep.linearSpeed;
   w.sleep.angularSpeed = scene.sleep.angularSpeed;
