@@ -3,10 +3,8 @@
 # Example 01, run and checked: `run.sh [ARMOUR] [OUT]` (defaults: armour on the PATH, ./out).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-armour="${1:-armour}"
-[[ "$armour" == */* ]] && armour="$(cd "$(dirname "$armour")" && pwd)/$(basename "$armour")"  # a path, made absolute
-out="${2:-$PWD/out}"
-mkdir -p "$out" && cp "$here/block-on-a-slope.yaml" "$out/" && cd "$out"
+source "$here/../setup.sh" "$@"   # $armour, and $out made and entered
+cp "$here/block-on-a-slope.yaml" ./
 "$armour" --log-level warn run block-on-a-slope.yaml
 # Distance travelled along the face in 1 s: 0 for "sticks", a t^2 / 2 = 0.8775 m for "slides".
 /usr/bin/python3 - <<'PY'

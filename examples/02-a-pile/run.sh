@@ -3,10 +3,8 @@
 # Example 02, run and checked: `run.sh [ARMOUR] [OUT]` (defaults: armour on the PATH, ./out).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-armour="${1:-armour}"
-[[ "$armour" == */* ]] && armour="$(cd "$(dirname "$armour")" && pwd)/$(basename "$armour")"  # a path, made absolute
-out="${2:-$PWD/out}"
-mkdir -p "$out" && cp "$here/pile.yaml" "$out/" && cd "$out"
+source "$here/../setup.sh" "$@"   # $armour, and $out made and entered
+cp "$here/pile.yaml" ./
 "$armour" --log-level warn run pile.yaml
 "$armour" --log-level warn analyse pile.yaml --state pile-out/final_state.csv --axis upper-fluke --output analysis
 cat analysis/pack.txt

@@ -3,10 +3,8 @@
 # Example 03, run and checked: `run.sh [ARMOUR] [OUT]` (defaults: armour on the PATH, ./out).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-armour="${1:-armour}"
-[[ "$armour" == */* ]] && armour="$(cd "$(dirname "$armour")" && pwd)/$(basename "$armour")"  # a path, made absolute
-out="${2:-$PWD/out}"
-mkdir -p "$out" && cp "$here/waves.yaml" "$out/" && cd "$out"
+source "$here/../setup.sh" "$@"   # $armour, and $out made and entered
+cp "$here/waves.yaml" ./
 "$armour" --log-level warn storm-file synth airy --out storm.nc --x-min 0 --x-max 24 --z-min 0 --z-max 10 \
   --voxel 0.25 --swl 6 --depth 4 --height 1.5 --period 6 --duration 18 > synth.txt
 "$armour" --log-level warn storm waves.yaml --storm storm.nc

@@ -6,10 +6,8 @@
 # scene dry for 2 s: a placed pack starts at rest.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-armour="${1:-armour}"
-[[ "$armour" == */* ]] && armour="$(cd "$(dirname "$armour")" && pwd)/$(basename "$armour")"  # a path, made absolute
-out="${2:-$PWD/out}"
-mkdir -p "$out" && cp "$here/../../cases/placement/coreloc-trunk-smoke.yaml" "$out/layer.yaml" && cd "$out"
+source "$here/../setup.sh" "$@"   # $armour, and $out made and entered
+cp "$here/../../cases/placement/coreloc-trunk-smoke.yaml" ./layer.yaml
 "$armour" --log-level warn place layer.yaml --set contact.solver=constraint
 cat layer-out/placement.txt
 "$armour" --log-level warn analyse layer-placed.yaml --output analysis
