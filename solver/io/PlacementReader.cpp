@@ -21,7 +21,7 @@ using namespace schema;
 // ---------------------------------------------------------------------------------------------
 
 const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix", "slope", "method", "grid",
-                             "orientation", "crane", "settle", "settle_each", "nest", "lowering", "rocks", "clearance", "seed", "output"};
+                             "orientation", "crane", "settle", "settle_each", "nest", "lowering", "rocks", "toe_berm", "clearance", "seed", "output"};
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
 const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries", "select",
@@ -31,6 +31,7 @@ const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
 const KeyList kSettleEachKeys{"damping", "rest_speed", "rest_time", "max_time", "max_drift", "hold_at_max_drift"};
 const KeyList kNestKeys{"moves", "shift", "tilt_deg", "max_drift"};
 const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
+const KeyList kToeBermKeys{"count", "dn50", "grading", "material", "length", "s_end", "clearance", "tries"};
 
 } // namespace
 
@@ -178,6 +179,22 @@ void readPlacement(const schema::Block& top, Scene& scene) {
     rs.toeLength = r.number("toe_length", {"m", kNonNegative, "4: rocks this far offshore along the toe"}, 0.0);
     rs.clearance = r.number("clearance", {"Dn50", kNonNegative, "0.002"}, rs.clearance);
     rs.tries = static_cast<int>(r.integer("tries", 1, "orientations tried per rock", 4));
+  }
+  if (p.has("toe_berm")) {
+    const Block t(ctx, p.get("toe_berm"), "placement.toe_berm", kToeBermKeys);
+    if (!out.rocks.enabled)
+      t.failValue("count", "a toe berm is laid on the rock underlayer with its rock shapes; add placement.rocks");
+    placement::RockSettings& tb = out.toeBerm;
+    tb.enabled = true;
+    tb.count = static_cast<int>(t.integer("count", 1, "rocks in the berm, e.g. 60"));
+    tb.dn50 = t.number("dn50", {"m", kPositive, "1.2: berm rock, heavier than the underlayer's"});
+    tb.grading = t.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, tb.grading);
+    tb.material = t.text("material", "a material name", out.rocks.material);
+    if (scene.findMaterial(tb.material) < 0) t.failValue("material", "no such material under materials:");
+    tb.toeLength = t.number("length", {"m", kPositive, "4: the berm runs this far offshore of the slope's foot"});
+    tb.sEnd = t.number("s_end", {"m", kNonNegative, "0: and up the face to here"}, 0.0);
+    tb.clearance = t.number("clearance", {"Dn50", kNonNegative, "0.002"}, tb.clearance);
+    tb.tries = static_cast<int>(t.integer("tries", 1, "orientations tried per rock", 4));
   }
 }
 

@@ -177,6 +177,11 @@ struct PlacementSettings {
   OrientationSettings orientation;
   CraneSettings crane;
   RockSettings rocks;
+  /// A toe berm (placement.toe_berm): rocks laid on the underlayer in front of the first row, from
+  /// toeLength offshore of the slope's foot to sEnd up the face (0: the foot), frozen like the
+  /// underlayer; it holds the layer's foot, which otherwise rolls off the toe's edge in the
+  /// downrush (docs/placement.md). Uses the underlayer's rock shapes: needs `rocks`.
+  RockSettings toeBerm;
   SettleSettings settle;
   NestSettings nest;
   SettleEachSettings settleEach;

@@ -392,6 +392,9 @@ private:
   std::pair<Vec3, double> descentStart(const GridPoint& g) const;
   PlacementProgress progressNow() const;
   void placeUnit(int i);
+  void depositRocks(const RockSettings& rs, double s0, double s1,
+                    const std::vector<std::pair<std::size_t, ShapeId>>& rockShapes, const std::string& key,
+                    std::uint64_t salt);
 
   const io::Scene& input;
   const ProgressFn& progress;
@@ -484,114 +487,132 @@ void PlacementRun::layRocks() {
   const PlacementSettings& ps = input.placement;
   io::Scene& scene = result.scene;
   World& world = *result.built.world;
-  const std::vector<GridPoint>& grid = plan.points;
-  const double wallWidth = plan.wallWidth;
   const RockSettings& rs = ps.rocks;
-  if (rs.enabled) {
-    if (slope == nullptr) core::failInput(scene.sourceName, "placement.rocks: the rocks are dropped on a slope; add one");
-    const std::size_t rockMaterial = resolveMaterial(scene, rs.material.empty() ? ps.material : rs.material,
-                                                     "placement.rocks.material");
-    std::vector<std::pair<std::size_t, ShapeId>> rockShapes;
-    for (int k = 0; k < rs.shapes; ++k) {
-      io::ShapeSpec spec;
-      spec.name = fmt::format("rock_{:02d}", k);
-      spec.generator = "rock";
-      spec.seed = ps.seed * 1000 + static_cast<std::uint64_t>(k);
-      scene.shapes.push_back(spec);
-      result.addedShapes.push_back(spec);
-      rockShapes.emplace_back(scene.shapes.size() - 1, worldShape(scene.shapes.size() - 1));
-    }
-    const Quat frame = slopeFrame(slope->tanAlpha), toFrame = frame.conjugate();
-    double rockRadius = 0.0;
-    for (const auto& [s, id] : rockShapes) rockRadius = std::max(rockRadius, world.shape(id).radius);
-    const double maxScale = rs.dn50 * std::pow(rs.grading, 0.25);
-    Deposit rockDeposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
-    for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(rockDeposit, world, b, toFrame);
-    // Rocks cover the face from the toe (toeLength offshore of the origin) to sEnd, between the walls.
-    const double rows = grid.empty() ? 0.0 : std::max_element(grid.begin(), grid.end(), [](auto& a, auto& b) {
-                                                 return a.s < b.s;
-                                               })->s;
-    const double sEnd = rs.sEnd > 0.0 ? rs.sEnd : rows + dn;
-    const Vec3 originFrame = toFrame * Vec3(slope->origin.x(), 0.0, slope->origin.y());
-    const double x0 = originFrame.x() - rs.toeLength, x1 = originFrame.x() + sEnd;
-    const double y0 = std::isfinite(wallLo) ? wallLo : gridSettings.yStart;
-    const double y1 = std::isfinite(wallHi) ? wallHi : y0 + (gridSettings.width > 0 ? gridSettings.width : wallWidth);
-    // A jittered grid of drop points (random sequential drops cluster and leave holes).
-    const double area = (x1 - x0) * (y1 - y0);
-    const double spacing = std::sqrt(area / std::max(1, rs.count));
-    const int cols = std::max(1, static_cast<int>(std::round((y1 - y0) / spacing)));
-    const int rowsR = std::max(1, (rs.count + cols - 1) / cols);
-    const double dxr = (x1 - x0) / rowsR, dyr = (y1 - y0) / cols;
-    for (int i = 0; i < (resume != nullptr ? 0 : rs.count); ++i) {
-      std::mt19937_64 rng = stream(ps.seed ^ 0x726f636bULL, static_cast<std::uint64_t>(i));
-      const int layerPass = i / (rowsR * cols);
-      const int k = i % (rowsR * cols);
-      const double px = x0 + (k / cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dxr;
-      const double py = y0 + (k % cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dyr;
-      const auto& [sceneShape, shapeId] = rockShapes[rng() % rockShapes.size()];
-      const simulation::ShapeModel& model = world.shape(shapeId);
-      // Log-uniform nominal diameter between Dn50 / sqrt(g) and Dn50 sqrt(g): Dn85 / Dn15 = g^0.7.
-      const double rockDn = rs.dn50 * std::pow(rs.grading, uniform(rng) - 0.5);
-      const double scale = rockDn / std::cbrt(model.unitMass.volume);
-      Placed best;
-      Quat bestNatural = Quat::Identity();
-      bool found = false;
-      for (int t = 0; t < std::max(1, rs.tries) * 4 && !(found && t >= rs.tries); ++t) {
-        const Quat natural = uniformRotation(rng);
-        Placed u;
-        u.shape = &model;
-        u.scale = scale;
-        u.R = (toFrame * natural * model.naturalToBody.conjugate()).toRotationMatrix();
-        u.radius = model.radius * scale;
-        u.x = Vec3(px, py, 0.0);
-        if (!rockDeposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
-        if (!found || u.x.z() < best.x.z()) {
-          best = u;
-          bestNatural = natural;
-          found = true;
-        }
-      }
-      if (!found) continue; // nothing fits here (a wall corner): the next drop point
-      const Mat3 before = best.R;
-      rockDeposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
-      // The orientation change of the slide, applied to the natural frame (in world axes).
-      const Quat tiltFrame(Mat3(best.R * before.transpose()));
-      const Quat natural = (frame * tiltFrame * toFrame * bestNatural).normalized();
-      rockDeposit.add(best);
-      BodySpec spec;
-      spec.name = fmt::format("rock_{:04d}", rockBodies.size());
-      spec.shape = shapeId;
-      spec.scale = scale;
-      spec.material = static_cast<simulation::MaterialId>(rockMaterial);
-      spec.fixed = true;
-      spec.position = frame * best.x;
-      spec.orientation = natural;
-      const BodyId b = world.addBody(spec);
-      rockBodies.push_back(b);
-      added.push_back({spec.name, sceneShape, scale, rockMaterial, rockDn * rockDn * rockDn, true});
-      if (rockBodies.size() % 500 == 0) log->info("rock underlayer: {} of {} rocks", rockBodies.size(), rs.count);
-      scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial,
-                                       rockDn * rockDn * rockDn, true));
-    }
-    if (resume != nullptr) {
-      // The rocks of the checkpoint, as they were laid (their poses come with the World's state).
-      for (const AddedBody& r : resume->bodies) {
-        if (!r.fixed) continue;
-        BodySpec spec;
-        spec.name = r.name;
-        spec.shape = worldShape(r.sceneShape);
-        spec.scale = r.scale;
-        spec.material = static_cast<simulation::MaterialId>(r.material);
-        spec.fixed = true;
-        spec.position = resume->world.bodies.at(world.bodies().size()).position;
-        rockBodies.push_back(world.addBody(spec));
-        added.push_back(r);
-      }
-    }
-    result.summary.rocks = static_cast<int>(rockBodies.size());
-    log->info("rock underlayer: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", rockBodies.size(),
-              rs.dn50, rs.grading, x1 - x0, y1 - y0);
+  if (!rs.enabled) return;
+  if (slope == nullptr) core::failInput(scene.sourceName, "placement.rocks: the rocks are dropped on a slope; add one");
+  std::vector<std::pair<std::size_t, ShapeId>> rockShapes;
+  for (int k = 0; k < rs.shapes; ++k) {
+    io::ShapeSpec spec;
+    spec.name = fmt::format("rock_{:02d}", k);
+    spec.generator = "rock";
+    spec.seed = ps.seed * 1000 + static_cast<std::uint64_t>(k);
+    scene.shapes.push_back(spec);
+    result.addedShapes.push_back(spec);
+    rockShapes.emplace_back(scene.shapes.size() - 1, worldShape(scene.shapes.size() - 1));
   }
+  // Rocks cover the face from the toe (toeLength offshore of the origin) to sEnd, between the walls.
+  const std::vector<GridPoint>& grid = plan.points;
+  const double rows = grid.empty() ? 0.0 : std::max_element(grid.begin(), grid.end(), [](auto& a, auto& b) {
+                                               return a.s < b.s;
+                                             })->s;
+  depositRocks(rs, -rs.toeLength, rs.sEnd > 0.0 ? rs.sEnd : rows + dn, rockShapes, "rocks", 0x726f636bULL);
+  // Then the toe berm, on the underlayer in front of the first row (its rocks are supports too).
+  if (ps.toeBerm.enabled)
+    depositRocks(ps.toeBerm, -ps.toeBerm.toeLength, ps.toeBerm.sEnd, rockShapes, "toe_berm", 0x6265726dULL);
+  if (resume != nullptr) {
+    // The rocks of the checkpoint, as they were laid (their poses come with the World's state).
+    for (const AddedBody& r : resume->bodies) {
+      if (!r.fixed) continue;
+      BodySpec spec;
+      spec.name = r.name;
+      spec.shape = worldShape(r.sceneShape);
+      spec.scale = r.scale;
+      spec.material = static_cast<simulation::MaterialId>(r.material);
+      spec.fixed = true;
+      spec.position = resume->world.bodies.at(world.bodies().size()).position;
+      rockBodies.push_back(world.addBody(spec));
+      added.push_back(r);
+    }
+  }
+  result.summary.rocks = static_cast<int>(rockBodies.size());
+}
+
+/// One pass of rocks (the underlayer, or the toe berm on it): `rs.count` rocks from `shapes` on a
+/// jittered grid of drop points from s0 to s1 up the face (negative: offshore of the foot, on the
+/// toe) between the walls, each lowered along the face normal (the lowest of `rs.tries`
+/// orientations), slid and tilted into the holes, and frozen. `key` names the pass's block
+/// (placement.rocks or placement.toe_berm); `salt` keeps each pass's random streams apart. A restart lays none: the checkpoint's rocks are added after the passes.
+void PlacementRun::depositRocks(const RockSettings& rs, double s0, double s1,
+                                const std::vector<std::pair<std::size_t, ShapeId>>& rockShapes, const std::string& key,
+                                std::uint64_t salt) {
+  const std::string what = key == "rocks" ? "rock underlayer" : "toe berm";
+  const PlacementSettings& ps = input.placement;
+  io::Scene& scene = result.scene;
+  World& world = *result.built.world;
+  const double wallWidth = plan.wallWidth;
+  const std::size_t rockMaterial = resolveMaterial(scene, rs.material.empty() ? ps.material : rs.material,
+                                                   "placement." + key + ".material");
+  const Quat frame = slopeFrame(slope->tanAlpha), toFrame = frame.conjugate();
+  double rockRadius = 0.0;
+  for (const auto& [s, id] : rockShapes) rockRadius = std::max(rockRadius, world.shape(id).radius);
+  const double maxScale = rs.dn50 * std::pow(rs.grading, 0.25);
+  Deposit rockDeposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
+  for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(rockDeposit, world, b, toFrame);
+  const Vec3 originFrame = toFrame * Vec3(slope->origin.x(), 0.0, slope->origin.y());
+  const double x0 = originFrame.x() + s0, x1 = originFrame.x() + s1;
+  const double y0 = std::isfinite(wallLo) ? wallLo : gridSettings.yStart;
+  const double y1 = std::isfinite(wallHi) ? wallHi : y0 + (gridSettings.width > 0 ? gridSettings.width : wallWidth);
+  // A jittered grid of drop points (random sequential drops cluster and leave holes).
+  const double area = (x1 - x0) * (y1 - y0);
+  const double spacing = std::sqrt(area / std::max(1, rs.count));
+  const int cols = std::max(1, static_cast<int>(std::round((y1 - y0) / spacing)));
+  const int rowsR = std::max(1, (rs.count + cols - 1) / cols);
+  const double dxr = (x1 - x0) / rowsR, dyr = (y1 - y0) / cols;
+  std::size_t laid = 0;
+  for (int i = 0; i < (resume != nullptr ? 0 : rs.count); ++i) {
+    std::mt19937_64 rng = stream(ps.seed ^ salt, static_cast<std::uint64_t>(i));
+    const int layerPass = i / (rowsR * cols);
+    const int k = i % (rowsR * cols);
+    const double px = x0 + (k / cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dxr;
+    const double py = y0 + (k % cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dyr;
+    const auto& [sceneShape, shapeId] = rockShapes[rng() % rockShapes.size()];
+    const simulation::ShapeModel& model = world.shape(shapeId);
+    // Log-uniform nominal diameter between Dn50 / sqrt(g) and Dn50 sqrt(g): Dn85 / Dn15 = g^0.7.
+    const double rockDn = rs.dn50 * std::pow(rs.grading, uniform(rng) - 0.5);
+    const double scale = rockDn / std::cbrt(model.unitMass.volume);
+    Placed best;
+    Quat bestNatural = Quat::Identity();
+    bool found = false;
+    for (int t = 0; t < std::max(1, rs.tries) * 4 && !(found && t >= rs.tries); ++t) {
+      const Quat natural = uniformRotation(rng);
+      Placed u;
+      u.shape = &model;
+      u.scale = scale;
+      u.R = (toFrame * natural * model.naturalToBody.conjugate()).toRotationMatrix();
+      u.radius = model.radius * scale;
+      u.x = Vec3(px, py, 0.0);
+      if (!rockDeposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
+      if (!found || u.x.z() < best.x.z()) {
+        best = u;
+        bestNatural = natural;
+        found = true;
+      }
+    }
+    if (!found) continue; // nothing fits here (a wall corner): the next drop point
+    const Mat3 before = best.R;
+    rockDeposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
+    // The orientation change of the slide, applied to the natural frame (in world axes).
+    const Quat tiltFrame(Mat3(best.R * before.transpose()));
+    const Quat natural = (frame * tiltFrame * toFrame * bestNatural).normalized();
+    rockDeposit.add(best);
+    BodySpec spec;
+    spec.name = fmt::format("rock_{:04d}", rockBodies.size());
+    spec.shape = shapeId;
+    spec.scale = scale;
+    spec.material = static_cast<simulation::MaterialId>(rockMaterial);
+    spec.fixed = true;
+    spec.position = frame * best.x;
+    spec.orientation = natural;
+    const BodyId b = world.addBody(spec);
+    rockBodies.push_back(b);
+    ++laid;
+    added.push_back({spec.name, sceneShape, scale, rockMaterial, rockDn * rockDn * rockDn, true});
+    if (laid % 500 == 0) log->info("{}: {} of {} rocks", what, laid, rs.count);
+    scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial, rockDn * rockDn * rockDn, true));
+  }
+  if (resume == nullptr)
+    log->info("{}: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", what, laid, rs.dn50, rs.grading,
+              x1 - x0, y1 - y0);
 }
 
 Deposit PlacementRun::rebuildDeposit() const {

@@ -181,12 +181,61 @@ TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
   refuses(s + "  settle_each: {max_drift: 0}\n", "placement.settle_each.max_drift");
   refuses(s + "  settle_each: {hold_at_max_drift: maybe}\n", "expected true or false");
   refuses(s + "  settle_each: {rest_sped: 0.1}\n", "did you mean 'rest_speed'");
+  refuses(s + "  toe_berm: {count: 10, dn50: 1, length: 3}\n", "add placement.rocks");
+  const std::string rocks = s + "  rocks: {count: 10, dn50: 0.4}\n";
+  refuses(rocks + "  toe_berm: {count: 10, dn50: 1}\n", "placement.toe_berm: missing key 'length'");
+  refuses(rocks + "  toe_berm: {count: 10, dn50: 1, length: 0}\n", "placement.toe_berm.length");
+  refuses(rocks + "  toe_berm: {count: 10, dn50: 1, length: 3, lenght: 3}\n", "did you mean 'length'");
+  const io::Scene berm = parse(rocks + "  toe_berm: {count: 12, dn50: 1.1, length: 3}\n");
+  EXPECT_TRUE(berm.placement.toeBerm.enabled);
+  EXPECT_EQ(berm.placement.toeBerm.count, 12);
+  EXPECT_DOUBLE_EQ(berm.placement.toeBerm.toeLength, 3.0);
+  EXPECT_DOUBLE_EQ(berm.placement.toeBerm.sEnd, 0.0);
   // And the defaults, when the block is given empty.
   const io::Scene on = parse(s + "  settle_each: {}\n");
   EXPECT_TRUE(on.placement.settleEach.enabled);
   EXPECT_DOUBLE_EQ(on.placement.settleEach.damping, 2.0);
   EXPECT_DOUBLE_EQ(on.placement.settleEach.maxTime, 6.0);
   EXPECT_FALSE(parse(s).placement.settleEach.enabled);
+}
+
+TEST(Placement, AToeBermLiesInFrontOfTheFootOnTheSameUnderlayer) {
+  // A berm of 12 rocks of Dn50 0.6 m on an underlayer of 40 rocks of 0.3 m, from 2 m offshore of
+  // the foot (the toe top) to 0.5 m up the face. Geometric placement (no dynamics): the underlayer
+  // is the one laid without a berm, stone for stone (the berm's random streams are its own); the
+  // berm's rocks lie in its band (their centroids' s within a rock's size of it, in the slope frame)
+  // and on top of the underlayer there (no berm rock below the face).
+  const std::string rocks = antiferScene("grid") + "  rocks: {count: 40, dn50: 0.3, toe_length: 2}\n";
+  placement::PlaceOptions options;
+  options.dynamics = false;
+  const placement::PlacementResult plain = placement::place(parse(rocks), {}, options);
+  const placement::PlacementResult berm =
+      placement::place(parse(rocks + "  toe_berm: {count: 12, dn50: 0.6, length: 2, s_end: 0.5}\n"), {}, options);
+  ASSERT_EQ(plain.summary.rocks, 40);
+  ASSERT_GE(berm.summary.rocks, 40 + 10) << "fewer than 10 of the 12 berm rocks found a place";
+  const auto rockNamed = [](const io::Scene& sc, const std::string& name) -> const io::Body* {
+    for (const auto& b : sc.bodies)
+      if (b.name == name) return &b;
+    return nullptr;
+  };
+  const double a = std::atan(0.5);
+  const Eigen::Vector3d up(std::cos(a), 0.0, std::sin(a)), normal(-std::sin(a), 0.0, std::cos(a));
+  for (int k = 0; k < berm.summary.rocks; ++k) {
+    const std::string name = fmt::format("rock_{:04d}", k);
+    const io::Body* b = rockNamed(berm.scene, name);
+    ASSERT_NE(b, nullptr) << name;
+    if (k < 40) {
+      const io::Body* p = rockNamed(plain.scene, name);
+      ASSERT_NE(p, nullptr) << name;
+      EXPECT_EQ(b->position, p->position) << name << ": the underlayer changed with the berm";
+      continue;
+    }
+    const double s = b->position.dot(up), n = b->position.dot(normal);
+    EXPECT_GT(s, -2.0 - 0.6) << name;
+    EXPECT_LT(s, 0.5 + 0.6) << name;
+    EXPECT_GT(b->position.z(), 0.0) << name << ": a berm rock below the toe top";
+    EXPECT_GT(n, -0.6) << name;
+  }
 }
 
 TEST(Placement, SlopeFrameOrientationsLieOnTheFace) {
