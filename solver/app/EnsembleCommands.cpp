@@ -60,6 +60,14 @@ struct EnsembleOptions {
   double checkpointMinutes = 10.0; ///< wall time between a placement's checkpoints (unit: min); 0 = only when stopped
 };
 
+/// A word as a shell reads it back: quoted when it holds a space, a bracket or a quote.
+std::string shellWord(const std::string& word) {
+  if (word.find_first_of(" []{}'\"$*?;&|<>()") == std::string::npos) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 /// The command that continues a stopped ensemble (the same options, and --restart).
 std::string restartCommand(const EnsembleOptions& o, const fs::path& folder) {
   std::string again = fmt::format("armour ensemble {} --restart --runs {} --first-seed {}", o.file, o.runs, o.firstSeed);
@@ -70,7 +78,7 @@ std::string restartCommand(const EnsembleOptions& o, const fs::path& folder) {
   if (o.timeOffset) again += fmt::format(" --time-offset {}", *o.timeOffset);
   if (o.threads > 0) again += fmt::format(" --threads {}", o.threads);
   again += fmt::format(" --output {} --axis {}", folder.string(), o.axis);
-  for (const std::string& set : o.sets) again += " --set " + set;
+  for (const std::string& set : o.sets) again += " --set " + shellWord(set);
   if (o.plots) again += " --plots";
   return again;
 }
@@ -107,7 +115,7 @@ void writeRecord(const fs::path& file, const std::string& fingerprint, const std
 }
 
 /// The record of a member that finished before, or nothing when there is none. Throws
-/// core::InputError when it was made from other inputs, or is not whole.
+/// RestartRefused when it was made from other inputs, or is not whole.
 std::optional<MemberRecord> readRecord(const fs::path& file, const std::string& fingerprint,
                                        const std::vector<std::string>& names) {
   std::ifstream in(file);
@@ -277,7 +285,8 @@ std::string memberText(const EnsembleOptions& o, const std::string& text, const 
 
 /// Place the member's packing and measure it; the placed scene is member/placed.yaml. The placement
 /// checkpoints into member/place-checkpoint.nc (every --checkpoint-minutes, and when stopped by a
-/// signal: then EnsembleStopped), and with --restart continues from it.
+/// signal: then EnsembleStopped), and with --restart continues from it; the caller removes it once
+/// the member's record is written.
 std::vector<double> placeMember(const EnsembleOptions& o, const std::string& text, const fs::path& source,
                                 const Member& m, std::string& unitPrefix, const StopSignals& signals) {
   const io::Scene scene = io::parseScene(text, source.parent_path(), source.filename().string());
@@ -306,8 +315,6 @@ std::vector<double> placeMember(const EnsembleOptions& o, const std::string& tex
                                       checkpoint.path().string()));
   }
   placement::writePlacementOutputs(text, placed, m.folder / "placed.yaml", m.folder);
-  std::error_code ec;
-  fs::remove(checkpoint.path(), ec); // the placed scene is the result now
   // Displacements from where each unit was released (seed 001 test 3: the crane positions).
   PoseMap release;
   for (const auto& u : placed.units) release[u.name] = {u.gridPoint, u.releaseOrientation};
@@ -406,6 +413,7 @@ MemberRecord packingOf(const EnsembleOptions& o, const std::string& text, const 
   MemberRecord r;
   r.values = placeMember(o, placementText, source, m, r.unitPrefix, signals);
   writeRecord(file, fingerprint, placementMeasures(), r);
+  fs::remove(m.folder / "place-checkpoint.nc", ec); // the record is the result now (a kill before it continues from here)
   return r;
 }
 

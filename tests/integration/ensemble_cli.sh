@@ -74,7 +74,9 @@ done
 # second packing's placement has one (the first packing and its two storm runs are done by then).
 "$armour" --log-level warn "${common[@]}" --threads 1 --output stop --checkpoint-minutes 1e-9 > stop.txt 2> stop.err &
 pid=$!
-for _ in $(seq 1 1200); do [[ -e stop/member-001/place-checkpoint.nc ]] && break; sleep 0.05; done
+# (up to 10 min: a loaded CI machine; the ensemble alone takes about 30 s)
+for _ in $(seq 1 12000); do [[ -e stop/member-001/place-checkpoint.nc ]] && break; sleep 0.05; done
+[[ -e stop/member-001/place-checkpoint.nc ]] || { kill -INT "$pid"; fail "the second packing's placement never checkpointed"; }
 kill -INT "$pid"
 set +e; wait "$pid"; code=$?; set -e
 [[ $code -eq 130 ]] || fail "stopped by SIGINT: exit $code ($(cat stop.err))"
