@@ -33,6 +33,44 @@ const KeyList kNestKeys{"moves", "shift", "tilt_deg", "max_drift"};
 const KeyList kRockKeys{"count", "dn50", "grading", "shapes", "material", "s_end", "toe_length", "clearance", "tries"};
 const KeyList kToeBermKeys{"count", "dn50", "grading", "material", "length", "s_end", "clearance", "tries"};
 
+/// placement.rocks (the underlayer) and placement.toe_berm (heavier rocks in front of the first
+/// row, on the underlayer, with its shapes).
+void readRocks(const schema::Block& p, const Scene& scene, placement::PlacementSettings& out) {
+  using namespace schema;
+  const Context& ctx = p.context();
+  if (p.has("rocks")) {
+    const Block r(ctx, p.get("rocks"), "placement.rocks", kRockKeys);
+    placement::RockSettings& rs = out.rocks;
+    rs.enabled = true;
+    rs.count = static_cast<int>(r.integer("count", 1, "rocks in the underlayer (3436 in seed 000)"));
+    rs.dn50 = r.number("dn50", {"m", kPositive, "0.79 (W/10 of a 5 m^3 unit)"});
+    rs.grading = r.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, rs.grading);
+    rs.shapes = static_cast<int>(r.integer("shapes", 1, "rock shapes in the library", 12));
+    rs.material = r.text("material", "a material name", out.material);
+    if (scene.findMaterial(rs.material) < 0) r.failValue("material", "no such material under materials:");
+    rs.sEnd = r.number("s_end", {"m", kPositive, "30: rocks up the face to here"}, 0.0);
+    rs.toeLength = r.number("toe_length", {"m", kNonNegative, "4: rocks this far offshore along the toe"}, 0.0);
+    rs.clearance = r.number("clearance", {"Dn50", kNonNegative, "0.002"}, rs.clearance);
+    rs.tries = static_cast<int>(r.integer("tries", 1, "orientations tried per rock", 4));
+  }
+  if (p.has("toe_berm")) {
+    const Block t(ctx, p.get("toe_berm"), "placement.toe_berm", kToeBermKeys);
+    if (!out.rocks.enabled)
+      t.failValue("count", "a toe berm is laid on the rock underlayer with its rock shapes; add placement.rocks");
+    placement::RockSettings& tb = out.toeBerm;
+    tb.enabled = true;
+    tb.count = static_cast<int>(t.integer("count", 1, "rocks in the berm, e.g. 60"));
+    tb.dn50 = t.number("dn50", {"m", kPositive, "1.2: berm rock, heavier than the underlayer's"});
+    tb.grading = t.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, tb.grading);
+    tb.material = t.text("material", "a material name", out.rocks.material);
+    if (scene.findMaterial(tb.material) < 0) t.failValue("material", "no such material under materials:");
+    tb.toeLength = t.number("length", {"m", kPositive, "4: the berm runs this far offshore of the slope's foot"});
+    tb.sEnd = t.number("s_end", {"m", kNonNegative, "0: and up the face to here"}, 0.0);
+    tb.clearance = t.number("clearance", {"Dn50", kNonNegative, "0.002"}, tb.clearance);
+    tb.tries = static_cast<int>(t.integer("tries", 1, "orientations tried per rock", 4));
+  }
+}
+
 } // namespace
 
 void readPlacement(const schema::Block& top, Scene& scene) {
@@ -165,37 +203,7 @@ void readPlacement(const schema::Block& top, Scene& scene) {
     if (ns.tiltDeg > 90.0) n.failValue("tilt_deg", "more than 90 deg; a move tilts the unit by at most this angle, give 0 to 90");
   }
 
-  if (p.has("rocks")) {
-    const Block r(ctx, p.get("rocks"), "placement.rocks", kRockKeys);
-    placement::RockSettings& rs = out.rocks;
-    rs.enabled = true;
-    rs.count = static_cast<int>(r.integer("count", 1, "rocks in the underlayer (3436 in seed 000)"));
-    rs.dn50 = r.number("dn50", {"m", kPositive, "0.79 (W/10 of a 5 m^3 unit)"});
-    rs.grading = r.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, rs.grading);
-    rs.shapes = static_cast<int>(r.integer("shapes", 1, "rock shapes in the library", 12));
-    rs.material = r.text("material", "a material name", out.material);
-    if (scene.findMaterial(rs.material) < 0) r.failValue("material", "no such material under materials:");
-    rs.sEnd = r.number("s_end", {"m", kPositive, "30: rocks up the face to here"}, 0.0);
-    rs.toeLength = r.number("toe_length", {"m", kNonNegative, "4: rocks this far offshore along the toe"}, 0.0);
-    rs.clearance = r.number("clearance", {"Dn50", kNonNegative, "0.002"}, rs.clearance);
-    rs.tries = static_cast<int>(r.integer("tries", 1, "orientations tried per rock", 4));
-  }
-  if (p.has("toe_berm")) {
-    const Block t(ctx, p.get("toe_berm"), "placement.toe_berm", kToeBermKeys);
-    if (!out.rocks.enabled)
-      t.failValue("count", "a toe berm is laid on the rock underlayer with its rock shapes; add placement.rocks");
-    placement::RockSettings& tb = out.toeBerm;
-    tb.enabled = true;
-    tb.count = static_cast<int>(t.integer("count", 1, "rocks in the berm, e.g. 60"));
-    tb.dn50 = t.number("dn50", {"m", kPositive, "1.2: berm rock, heavier than the underlayer's"});
-    tb.grading = t.number("grading", {"-", Range{1.0, 3.0, false, false}, "1.25 (Dn85/Dn15)"}, tb.grading);
-    tb.material = t.text("material", "a material name", out.rocks.material);
-    if (scene.findMaterial(tb.material) < 0) t.failValue("material", "no such material under materials:");
-    tb.toeLength = t.number("length", {"m", kPositive, "4: the berm runs this far offshore of the slope's foot"});
-    tb.sEnd = t.number("s_end", {"m", kNonNegative, "0: and up the face to here"}, 0.0);
-    tb.clearance = t.number("clearance", {"Dn50", kNonNegative, "0.002"}, tb.clearance);
-    tb.tries = static_cast<int>(t.integer("tries", 1, "orientations tried per rock", 4));
-  }
+  readRocks(p, scene, out);
 }
 
 } // namespace armour::io::detail
