@@ -60,24 +60,17 @@ struct EnsembleOptions {
   double checkpointMinutes = 10.0; ///< wall time between a placement's checkpoints (unit: min); 0 = only when stopped
 };
 
-/// A word as a shell reads it back: quoted when it holds a space, a bracket or a quote.
-std::string shellWord(const std::string& word) {
-  if (word.find_first_of(" []{}'\"$*?;&|<>()") == std::string::npos) return word;
-  std::string quoted = "'";
-  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 /// The command that continues a stopped ensemble (the same options, and --restart).
 std::string restartCommand(const EnsembleOptions& o, const fs::path& folder) {
-  std::string again = fmt::format("armour ensemble {} --restart --runs {} --first-seed {}", o.file, o.runs, o.firstSeed);
-  for (const std::string& storm : o.storms) again += " --storm " + storm;
+  std::string again = fmt::format("armour ensemble {} --restart --runs {} --first-seed {}", shellWord(o.file), o.runs,
+                                  o.firstSeed);
+  for (const std::string& storm : o.storms) again += " --storm " + shellWord(storm);
   if (!o.storms.empty())
     again += fmt::format(" --realisations {} --first-storm-seed {}", o.realisations, o.firstStormSeed);
   if (o.duration) again += fmt::format(" --duration {}", *o.duration);
   if (o.timeOffset) again += fmt::format(" --time-offset {}", *o.timeOffset);
   if (o.threads > 0) again += fmt::format(" --threads {}", o.threads);
-  again += fmt::format(" --output {} --axis {}", folder.string(), o.axis);
+  again += fmt::format(" --output {} --axis {}", shellWord(folder.string()), shellWord(o.axis));
   for (const std::string& set : o.sets) again += " --set " + shellWord(set);
   if (o.plots) again += " --plots";
   return again;
@@ -128,10 +121,11 @@ std::optional<MemberRecord> readRecord(const fs::path& file, const std::string& 
     if (comma != std::string::npos) fields[line.substr(0, comma)] = line.substr(comma + 1);
   }
   if (fields["fingerprint"] != fingerprint)
-    throw RestartRefused(fmt::format("{}: was written by an ensemble of other inputs (another placement file, --set, --axis, "
-                                   "storm file or duration: fingerprint {} against {}); continue with the options "
-                                   "the ensemble was started with, or start anew without --restart in another --output",
-                    file.string(), fields["fingerprint"], fingerprint));
+    throw RestartRefused(fmt::format("{}: was written by an ensemble of other inputs (another placement file, --set, "
+                                     "--axis, storm file or duration: fingerprint {} against {}); continue with the "
+                                     "options the ensemble was started with, or start anew without --restart in "
+                                     "another --output",
+                                     file.string(), fields["fingerprint"], fingerprint));
   MemberRecord r;
   r.unitPrefix = fields["unit_prefix"];
   for (const std::string& name : names) {

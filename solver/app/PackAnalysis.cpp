@@ -24,9 +24,8 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("NaN"); }
 std::string json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
 
-/// The slope-normal height (frame coordinates, m) of a body's highest point: its mesh (principal
-/// frame at scale 1) scaled and placed at the body's pose.
-/// The lowest and highest slope-normal coordinates of a body's surface (m).
+/// The slope-normal heights (frame coordinates, m) of a body's lowest and highest points: its mesh
+/// (principal frame at scale 1) scaled and placed at the body's pose.
 Eigen::Vector2d extentOf(const simulation::World& world, simulation::BodyId b, const analysis::SlopeFrame& frame) {
   geometry::TriangleMesh mesh = world.shape(world.bodyShape(b)).mesh;
   for (auto& v : mesh.vertices) v *= world.bodyScale(b);

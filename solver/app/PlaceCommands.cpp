@@ -42,9 +42,9 @@ struct PlaceOptions {
 
 /// The command that continues a stopped placement.
 std::string restartCommand(const PlaceOptions& o) {
-  std::string again = fmt::format("armour place {} --restart", o.file);
-  if (!o.output.empty()) again += " --output " + o.output;
-  for (const std::string& set : o.sets) again += " --set " + set;
+  std::string again = fmt::format("armour place {} --restart", shellWord(o.file));
+  if (!o.output.empty()) again += " --output " + shellWord(o.output);
+  for (const std::string& set : o.sets) again += " --set " + shellWord(set);
   return again;
 }
 

@@ -488,11 +488,11 @@ RunTally stepToEnd(const io::Scene& scene, const simulation::BuiltScene& built, 
   const fs::path checkpointPath = checkpointPathOf(scene);
   outputs.close();
   checkpoints.write(checkpointPath, world, outputs);
-  std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", o.scene,
-                                  o.output.empty() ? std::string() : " -o " + o.output);
-  if (!o.stormFile.empty()) again += " --storm " + o.stormFile;
+  std::string again = fmt::format("armour {} {} --restart{}", o.stormFile.empty() ? "run" : "storm", shellWord(o.scene),
+                                  o.output.empty() ? std::string() : " -o " + shellWord(o.output));
+  if (!o.stormFile.empty()) again += " --storm " + shellWord(o.stormFile);
   if (o.variabilitySeed) again += fmt::format(" --variability-seed {}", *o.variabilitySeed);
-  for (const std::string& set : o.sets) again += " --set " + set;
+  for (const std::string& set : o.sets) again += " --set " + shellWord(set);
   log->warn("stopped by {} at t = {} s (step {}); checkpoint written to {}; continue with: {}", signalName(signal),
             world.time(), world.stepCount(), checkpointPath.string(), again);
   log->flush();

@@ -28,6 +28,13 @@ StopSignals::~StopSignals() {
 
 int StopSignals::received() const { return stopSignal; }
 
+std::string shellWord(const std::string& word) {
+  if (word.find_first_of(" []{}'\"$*?;&|<>()") == std::string::npos) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
 const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
 } // namespace armour::app

@@ -7,6 +7,7 @@
 /// atomically) in place. The previous handlers are restored when the command ends.
 
 #include <csignal>
+#include <string>
 
 namespace armour::app {
 
@@ -28,6 +29,11 @@ private:
   struct sigaction previousInt_ {};
   struct sigaction previousTerm_ {};
 };
+
+/// A word of the printed command that continues a stopped run, as a shell reads it back: quoted
+/// when it holds a space, a bracket, a quote or another character the shell would act on (a --set
+/// value such as 'hydro.storm.offset=[104, 3]').
+std::string shellWord(const std::string& word);
 
 /// "SIGINT", "SIGTERM" or "a signal".
 const char* signalName(int signal);
