@@ -9,6 +9,7 @@
 #include "app/PlaceCommands.hpp"
 #include "app/ReportCommands.hpp"
 #include "app/RunCommands.hpp"
+#include "app/SchemaCommands.hpp"
 #include "app/ShapeCommands.hpp"
 #include "app/StormCommands.hpp"
 #include "core/BuildInfo.hpp"
@@ -63,6 +64,7 @@ int main(int argc, char** argv) {
   armour::app::addReportCommands(app, global);
   armour::app::addDeformCommands(app, global);
   armour::app::addStressCommands(app, global);
+  armour::app::addSchemaCommands(app, global);
 
   refuseOutOfRangeNumbers(app);
 

@@ -14,6 +14,7 @@
 
 #include "hydro/HydroSettings.hpp"
 #include "placement/PlacementSettings.hpp"
+#include "simulation/RestSettings.hpp"
 #include "simulation/StepSettings.hpp"
 
 #include <Eigen/Core>
@@ -251,24 +252,6 @@ struct OutputSettings {
 };
 
 
-/// Bodies that stay slow long enough stop being integrated until touched (seed 001: PhysX
-/// "sleep" keeps resting packs from chattering).
-struct SleepSettings {
-  bool enabled = true;
-  double linearSpeed = 1.0e-3;     ///< centroid speed below which a body may sleep (unit: m/s)
-  double angularSpeed = 1.0e-3;    ///< angular speed below which a body may sleep (unit: rad/s)
-  double time = 0.5;               ///< both must hold this long before it sleeps (unit: s)
-  double wakeLoadFraction = 0.01;  ///< a sleeper wakes when its external load changes by this x its weight (unit: -)
-};
-
-/// Viscous damping of every dynamic body's motion, v and omega decaying as exp(-c t): the air and
-/// water resistance of a physics engine's bodies (seed 001: PhysX linear and angular damping 0.9
-/// 1/s, "to model air and water resistance"). Off by default: armour's loads model the water.
-struct BodyDampingSettings {
-  double linear = 0.0;  ///< decay rate of the centroid velocity (unit: 1/s)
-  double angular = 0.0; ///< decay rate of the angular velocity (unit: 1/s)
-};
-
 struct Scene {
   std::string name;                    ///< the scene file's stem, e.g. "pile"
   std::string sourceName;              ///< the file as named by the user (for messages)
@@ -284,8 +267,8 @@ struct Scene {
   std::uint64_t seed = 1;              ///< default seed of random shapes, height fields and grid jitter
   ContactSettings contact;
   OutputSettings output;
-  SleepSettings sleep;
-  BodyDampingSettings bodyDamping;
+  simulation::SleepSettings sleep;
+  simulation::BodyDamping bodyDamping;
   std::vector<Material> materials;
   std::vector<ShapeSpec> shapes;       ///< named shapes first, then those bodies used directly
   std::vector<Body> bodies;

@@ -3,6 +3,7 @@
 
 #include "io/PlacementReader.hpp"
 #include "io/SceneOverrides.hpp"
+#include "io/SceneTables.hpp"
 #include "io/ReadOrientation.hpp"
 #include "io/YamlSchema.hpp"
 
@@ -553,42 +554,23 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
                        "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
                        "placement",   "initial_state", "body_damping"};
-const KeyList kContactKeys{"model", "solver", "sample_spacing", "level_set_cells_per_dn", "max_overlap", "fdem",
-                           "constraint", "sample_list_slack", "dashpot"};
-const KeyList kContactSolvers{"penalty", "constraint"};
-const KeyList kContactDashpots{"explicit", "implicit"};
-const KeyList kConstraintKeys{"time_step",     "substeps",   "damping_ratio",
-                              "push_speed",    "restitution_threshold", "speculative_margin", "patch_angle",
-                              "friction_anchors", "reuse_distance"};
-const KeyList kContactModels{"levelset", "fdem"};
-const KeyList kFdemKeys{"elements_per_unit"};
-const KeyList kOutputKeys{"folder", "vtk_interval", "series_interval", "checkpoint_interval", "checkpoint_wall_minutes",
-                          "contacts", "unit_loads", "unit_loads_interval", "unit_loads_cluster"};
-const KeyList kSleepKeys{"enabled", "linear_speed", "angular_speed", "time", "wake_load_fraction"};
-const KeyList kBodyDampingKeys{"linear", "angular"};
 
 /// contact.constraint (the constraint solver's settings); warned about under the penalty solver.
 void readConstraintSettings(const Block& c, Scene& scene) {
-  const Block k(c.context(), c.has("constraint") ? c.get("constraint") : YAML::Node(), c.path("constraint"),
-                kConstraintKeys);
+  const Block k(c.context(), c.has("constraint") ? c.get("constraint") : YAML::Node(), tables::contactConstraint());
   if (c.has("constraint") && scene.contact.solver != ContactSolver::Constraint)
     c.warnValue("constraint", "applies to contact.solver: constraint only; the penalty solver ignores it");
   if (scene.contact.solver == ContactSolver::Constraint && scene.contact.model == ContactModel::Fdem)
     c.failValue("solver", "the constraint solver runs on the level-set narrow phase; use contact.model: levelset, "
                           "or contact.solver: penalty with fdem");
   simulation::ConstraintSettings& s = scene.contact.constraint;
-  constexpr Range kStep{simulation::kMinConstraintStep, simulation::kMaxConstraintStep, false, false};
-  s.timeStep = k.number("time_step", {"s", kStep, "0.005 (1/200 s), between 1e-6 and 1/30 s"}, s.timeStep);
-  const std::uint64_t substeps = k.integer("substeps", 1, "substeps per step, e.g. 4", static_cast<std::uint64_t>(s.substeps));
-  if (substeps > 64) k.failValue("substeps", "at most 64 substeps; use a smaller time_step instead");
-  s.substeps = static_cast<int>(substeps);
-  s.dampingRatio = k.number("damping_ratio", {"-", kNonNegative, "10"}, s.dampingRatio);
-  s.pushSpeed = k.number("push_speed", {"m/s", kPositive, "3"}, s.pushSpeed);
-  s.restitutionThreshold = k.number("restitution_threshold", {"m/s", kNonNegative, "0.2"}, s.restitutionThreshold);
-  constexpr Range kMargin{0.0, 0.5, true, false};
-  s.speculativeMargin = k.number("speculative_margin", {"Dn", kMargin, "0.05"}, s.speculativeMargin);
-  constexpr Range kAngle{0.0, 1.5707963267948966, true, true};
-  s.patchAngle = k.number("patch_angle", {"rad", kAngle, "0.5"}, s.patchAngle);
+  s.timeStep = k.number("time_step", s.timeStep);
+  s.substeps = static_cast<int>(k.integer("substeps", static_cast<std::uint64_t>(s.substeps)));
+  s.dampingRatio = k.number("damping_ratio", s.dampingRatio);
+  s.pushSpeed = k.number("push_speed", s.pushSpeed);
+  s.restitutionThreshold = k.number("restitution_threshold", s.restitutionThreshold);
+  s.speculativeMargin = k.number("speculative_margin", s.speculativeMargin);
+  s.patchAngle = k.number("patch_angle", s.patchAngle);
   s.frictionAnchors = k.flag("friction_anchors", s.frictionAnchors);
   // Below the speculative margin, so that no contact can appear unseen while a pair's patches are reused.
   const Range kReuse{0.0, std::min(0.5 * s.speculativeMargin, 0.05), false, false};
@@ -623,40 +605,31 @@ void readRunSettings(const Block& top, Scene& scene) {
   if (!scene.timeStep.automatic && scene.timeStep.value > scene.duration)
     top.warnValue("time_step", fmt::format("longer than the duration {} s: the run takes a single step", scene.duration));
 
-  const Block c(ctx, top.has("contact") ? top.get("contact") : YAML::Node(), "contact", kContactKeys);
-  scene.contact.sampleSpacing = c.number("sample_spacing", {"Dn", kFraction, "0.1"}, scene.contact.sampleSpacing);
-  scene.contact.levelSetCellsPerDn =
-      c.number("level_set_cells_per_dn", {"cells per Dn", kPositive, "24"}, scene.contact.levelSetCellsPerDn);
-  scene.contact.maxOverlap = c.number("max_overlap", {"Dn", kFraction, "0.25"}, scene.contact.maxOverlap);
-  constexpr Range kSlack{0.0, 1.0, false, false};
-  scene.contact.sampleListSlack =
-      c.number("sample_list_slack", {"Dn", kSlack, "0.05; 0 = no near-sample lists"}, scene.contact.sampleListSlack);
-  scene.contact.model = static_cast<ContactModel>(c.choice("model", kContactModels, 0));
-  scene.contact.solver = static_cast<ContactSolver>(c.choice("solver", kContactSolvers, 0));
-  scene.contact.dashpot = static_cast<ContactDashpot>(c.choice("dashpot", kContactDashpots, 0));
+  const Block c(ctx, top.has("contact") ? top.get("contact") : YAML::Node(), tables::contact());
+  scene.contact.sampleSpacing = c.number("sample_spacing", scene.contact.sampleSpacing);
+  scene.contact.levelSetCellsPerDn = c.number("level_set_cells_per_dn", scene.contact.levelSetCellsPerDn);
+  scene.contact.maxOverlap = c.number("max_overlap", scene.contact.maxOverlap);
+  scene.contact.sampleListSlack = c.number("sample_list_slack", scene.contact.sampleListSlack);
+  scene.contact.model = static_cast<ContactModel>(c.choice("model", static_cast<std::size_t>(scene.contact.model)));
+  scene.contact.solver = static_cast<ContactSolver>(c.choice("solver", static_cast<std::size_t>(scene.contact.solver)));
+  scene.contact.dashpot = static_cast<ContactDashpot>(c.choice("dashpot", static_cast<std::size_t>(scene.contact.dashpot)));
   if (c.has("dashpot") && scene.contact.solver == ContactSolver::Constraint)
     c.warnValue("dashpot", "applies to contact.solver: penalty only; the constraint solver's contacts are soft "
                            "constraints (contact.constraint.damping_ratio)");
   readConstraintSettings(c, scene);
-  const Block fd(ctx, c.has("fdem") ? c.get("fdem") : YAML::Node(), c.path("fdem"), kFdemKeys);
+  const Block fd(ctx, c.has("fdem") ? c.get("fdem") : YAML::Node(), tables::contactFdem());
   if (c.has("fdem") && scene.contact.model != ContactModel::Fdem)
     c.warnValue("fdem", "applies to contact.model: fdem only; the level-set model ignores it");
-  scene.contact.fdemElementsPerUnit = fd.integer("elements_per_unit", 24, "tetrahedra per body, e.g. 2500 (seed 002)",
-                                                 scene.contact.fdemElementsPerUnit);
-  if (scene.contact.fdemElementsPerUnit > 2'000'000)
-    fd.failValue("elements_per_unit", "at most 2000000 tetrahedra per body; 2500 (seed 002) resolves a Core-Loc");
+  scene.contact.fdemElementsPerUnit = fd.integer("elements_per_unit", scene.contact.fdemElementsPerUnit);
 
-  const Block o(ctx, top.has("output") ? top.get("output") : YAML::Node(), "output", kOutputKeys);
+  const Block o(ctx, top.has("output") ? top.get("output") : YAML::Node(), tables::output());
   const std::string folder = o.text("folder", "a folder path, relative to the scene file's folder", scene.name + "-out");
   scene.output.folder = std::filesystem::absolute(ctx.baseDir / folder).lexically_normal();
   scene.output.folderGiven = o.has("folder");
-  scene.output.vtkInterval = o.number("vtk_interval", {"s", kNonNegative, "0.1; 0 = none"}, scene.output.vtkInterval);
-  scene.output.seriesInterval = o.number("series_interval", {"s", kNonNegative, "0.01; 0 = none"}, scene.output.seriesInterval);
-  scene.output.checkpointInterval =
-      o.number("checkpoint_interval", {"s", kNonNegative, "1 simulated second; 0 = only at the end"},
-               scene.output.checkpointInterval);
-  scene.output.checkpointWallMinutes = o.number("checkpoint_wall_minutes", {"min", kNonNegative, "30; 0 = none"},
-                                                scene.output.checkpointWallMinutes);
+  scene.output.vtkInterval = o.number("vtk_interval", scene.output.vtkInterval);
+  scene.output.seriesInterval = o.number("series_interval", scene.output.seriesInterval);
+  scene.output.checkpointInterval = o.number("checkpoint_interval", scene.output.checkpointInterval);
+  scene.output.checkpointWallMinutes = o.number("checkpoint_wall_minutes", scene.output.checkpointWallMinutes);
   scene.output.contacts = o.flag("contacts", scene.output.contacts);
   if (o.has("unit_loads")) {
     const YAML::Node list = o.get("unit_loads");
@@ -672,24 +645,19 @@ void readRunSettings(const Block& top, Scene& scene) {
       o.failValue("unit_loads", "expected body names or prefixes ending in '*', e.g. [unit_3, unit_7] or 'unit_*'");
     }
   }
-  scene.output.unitLoadsInterval = o.number("unit_loads_interval", {"s", kPositive, "0.02"}, scene.output.unitLoadsInterval);
-  scene.output.unitLoadsCluster =
-      o.number("unit_loads_cluster", {"Dn", kPositive, "0.1"}, scene.output.unitLoadsCluster);
-  if (scene.output.unitLoadsCluster > 1.0)
-    o.failValue("unit_loads_cluster", "wider than the unit (1 Dn): give at most 1, e.g. 0.1");
+  scene.output.unitLoadsInterval = o.number("unit_loads_interval", scene.output.unitLoadsInterval);
+  scene.output.unitLoadsCluster = o.number("unit_loads_cluster", scene.output.unitLoadsCluster);
 
-  const Block s(ctx, top.has("sleep") ? top.get("sleep") : YAML::Node(), "sleep", kSleepKeys);
+  const Block s(ctx, top.has("sleep") ? top.get("sleep") : YAML::Node(), tables::sleep());
   scene.sleep.enabled = s.flag("enabled", scene.sleep.enabled);
-  scene.sleep.linearSpeed = s.number("linear_speed", {"m/s", kNonNegative, "0.001"}, scene.sleep.linearSpeed);
-  scene.sleep.angularSpeed = s.number("angular_speed", {"rad/s", kNonNegative, "0.001"}, scene.sleep.angularSpeed);
-  scene.sleep.time = s.number("time", {"s", kNonNegative, "0.5"}, scene.sleep.time);
-  scene.sleep.wakeLoadFraction = s.number("wake_load_fraction", {"-", kPositive, "0.01 of the body's weight"},
-                                          scene.sleep.wakeLoadFraction);
+  scene.sleep.linearSpeed = s.number("linear_speed", scene.sleep.linearSpeed);
+  scene.sleep.angularSpeed = s.number("angular_speed", scene.sleep.angularSpeed);
+  scene.sleep.time = s.number("time", scene.sleep.time);
+  scene.sleep.wakeLoadFraction = s.number("wake_load_fraction", scene.sleep.wakeLoadFraction);
 
-  const Block d(ctx, top.has("body_damping") ? top.get("body_damping") : YAML::Node(), "body_damping",
-                kBodyDampingKeys);
-  scene.bodyDamping.linear = d.number("linear", {"1/s", kNonNegative, "0.9 (seed 001)"}, scene.bodyDamping.linear);
-  scene.bodyDamping.angular = d.number("angular", {"1/s", kNonNegative, "0.9 (seed 001)"}, scene.bodyDamping.angular);
+  const Block d(ctx, top.has("body_damping") ? top.get("body_damping") : YAML::Node(), tables::bodyDamping());
+  scene.bodyDamping.linear = d.number("linear", scene.bodyDamping.linear);
+  scene.bodyDamping.angular = d.number("angular", scene.bodyDamping.angular);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -860,7 +828,7 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
   // Unit names are checked here when the bodies are given; a placement scene's come with `armour place`.
   if (!top.has("placement") && !scene.output.unitLoads.empty()) {
     if (const UnitLoadSelection units = selectUnitLoadBodies(scene); !units.problem.empty())
-      Block(ctx, top.get("output"), "output", kOutputKeys).failValue("unit_loads", units.problem);
+      Block(ctx, top.get("output"), tables::output()).failValue("unit_loads", units.problem);
   }
 
   const bool anyFixed = std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.fixed; });

@@ -163,8 +163,92 @@ inline bool overflowsDouble(const std::string& text) {
   return !text.empty() && end == text.c_str() + text.size() && errno == ERANGE && std::isinf(v);
 }
 
+// ---------------------------------------------------------------------------------------------
+// The schema as data: a Table per block lists its keys with type, unit, range, default and
+// meaning. It drives the Block's key check and its reads' messages, and generates the key tables
+// of docs/scene-file.md (io/SceneSchema.hpp; `armour schema`).
+// ---------------------------------------------------------------------------------------------
+
+enum class KeyKind {
+  Number,  ///< a number with unit and range (Key::num)
+  Integer, ///< a whole number in [intMin, intMax]
+  Flag,    ///< true or false
+  Choice,  ///< one of Key::choices
+  Other,   ///< text, lists, mappings: Key::type says what
+};
+
+/// One key of a block.
+struct Key {
+  std::string_view name;
+  KeyKind kind = KeyKind::Number;
+  Num num{};                    ///< unit (every kind), range and example (numbers)
+  std::string defaultText{};    ///< the default as the docs show it, from the settings struct; empty: none
+  std::string_view meaning{};   ///< the docs' meaning column (markdown)
+  KeyList choices{};            ///< KeyKind::Choice, in the order of their enum
+  std::uint64_t intMin = 0;     ///< KeyKind::Integer
+  std::uint64_t intMax = std::numeric_limits<std::uint64_t>::max();
+  std::string_view type{};      ///< the docs' type column where the kind's own does not say enough
+  std::string_view intWhat{};   ///< KeyKind::Integer: what the number counts, for messages
+  std::string_view overMax{};   ///< KeyKind::Integer: the rest of "at most <intMax> ...", with the fix
+};
+
+/// The default of a number as the docs show it ("0.001", "3", "1e-06").
+inline std::string show(double v) { return fmt::format("{}", v); }
+inline std::string show(bool v) { return v ? "true" : "false"; }
+
+/// A block's keys, in the order the docs list them.
+class Table {
+public:
+  Table(std::string path, std::vector<Key> keys) : path_(std::move(path)), keys_(std::move(keys)) {
+    for (const Key& k : keys_) names_.push_back(k.name);
+  }
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] const std::vector<Key>& keys() const { return keys_; }
+  [[nodiscard]] const KeyList& names() const { return names_; }
+  [[nodiscard]] const Key* find(std::string_view name) const {
+    for (const Key& k : keys_)
+      if (k.name == name) return &k;
+    return nullptr;
+  }
+
+private:
+  std::string path_;
+  std::vector<Key> keys_;
+  KeyList names_;
+};
+
+/// The docs' type column of a key: "number >= 0", "integer 1 to 64", "true/false", "`a` or `b`".
+inline std::string typeText(const Key& k) {
+  if (!k.type.empty()) return std::string(k.type);
+  switch (k.kind) {
+  case KeyKind::Number: return k.num.range.lo == -kInf && k.num.range.hi == kInf ? "number" : "number " + k.num.range.text();
+  case KeyKind::Integer:
+    return k.intMax == std::numeric_limits<std::uint64_t>::max() ? fmt::format("integer >= {}", k.intMin)
+                                                                 : fmt::format("integer {} to {}", k.intMin, k.intMax);
+  case KeyKind::Flag: return "true/false";
+  case KeyKind::Choice: {
+    std::string text;
+    for (std::size_t i = 0; i < k.choices.size(); ++i)
+      text += fmt::format("{}`{}`", i == 0 ? "" : i + 1 == k.choices.size() ? " or " : ", ", k.choices[i]);
+    return text;
+  }
+  case KeyKind::Other: break;
+  }
+  return "";
+}
+
 class Block {
 public:
+  /// Check that `node` is a mapping whose keys are all in `table` (and not repeated); the reads
+  /// that name no unit or range take them from the table.
+  Block(const Context& ctx, const YAML::Node& node, const Table& table) : Block(ctx, node, table.path(), table.names()) {
+    table_ = &table;
+  }
+  /// The same under another path (a table shared by several blocks, or an indexed item).
+  Block(const Context& ctx, const YAML::Node& node, std::string path, const Table& table)
+      : Block(ctx, node, std::move(path), table.names()) {
+    table_ = &table;
+  }
   /// Check that `node` is a mapping whose keys are all in `keys` (and not repeated).
   Block(const Context& ctx, const YAML::Node& node, std::string path, const KeyList& keys)
       : ctx_(ctx), node_(node), path_(std::move(path)), keys_(keys) {
@@ -220,6 +304,22 @@ public:
   [[nodiscard]] std::optional<double> optionalNumber(std::string_view key, const Num& n) const {
     if (!has(key)) return std::nullopt;
     return number(key, n);
+  }
+
+  /// A number whose unit, range and example are the table's.
+  [[nodiscard]] double number(std::string_view key, std::optional<double> fallback = {}) const {
+    return number(key, tableKey(key, KeyKind::Number).num, fallback);
+  }
+  /// An integer within the table's bounds.
+  [[nodiscard]] std::uint64_t integer(std::string_view key, std::optional<std::uint64_t> fallback = {}) const {
+    const Key& k = tableKey(key, KeyKind::Integer);
+    const std::uint64_t v = integer(key, k.intMin, k.intWhat, fallback);
+    if (v > k.intMax) failValue(key, fmt::format("at most {} {}", k.intMax, k.overMax));
+    return v;
+  }
+  /// One of the table's choices, as its index.
+  [[nodiscard]] std::size_t choice(std::string_view key, std::optional<std::size_t> fallback = {}) const {
+    return choice(key, tableKey(key, KeyKind::Choice).choices, fallback);
   }
 
   /// A list of `count` numbers, each checked against n.range.
@@ -316,6 +416,13 @@ public:
   }
 
 private:
+  const Key& tableKey(std::string_view key, KeyKind kind) const {
+    const Key* k = table_ ? table_->find(key) : nullptr;
+    if (!k || k->kind != kind)
+      throw std::logic_error(fmt::format("scene schema: key '{}' of {} read without its table entry", key, path_));
+    return *k;
+  }
+
   void assertDeclared([[maybe_unused]] std::string_view key) const {
     // A read of an undeclared key is a programming error: it would never be reachable by the user.
     if (std::find(keys_.begin(), keys_.end(), key) == keys_.end())
@@ -361,6 +468,7 @@ private:
   YAML::Node node_;
   std::string path_;
   const KeyList& keys_;
+  const Table* table_ = nullptr;
 };
 
 } // namespace armour::io::schema

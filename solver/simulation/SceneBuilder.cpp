@@ -159,13 +159,8 @@ WorldSettings worldSettings(const io::Scene& scene) {
   w.dashpot = scene.contact.dashpot == io::ContactDashpot::Implicit ? DashpotIntegration::Implicit
                                                                      : DashpotIntegration::Explicit;
   w.constraint = scene.contact.constraint;
-  w.sleep.enabled = scene.sleep.enabled;
-  w.sleep.linearSpeed = scene.sleep.linearSpeed;
-  w.sleep.angularSpeed = scene.sleep.angularSpeed;
-  w.sleep.time = scene.sleep.time;
-  w.sleep.wakeLoadFraction = scene.sleep.wakeLoadFraction;
-  w.bodyDamping.linear = scene.bodyDamping.linear;
-  w.bodyDamping.angular = scene.bodyDamping.angular;
+  w.sleep = scene.sleep;
+  w.bodyDamping = scene.bodyDamping;
   w.recordContacts = scene.output.contacts;
   return w;
 }

@@ -28,6 +28,7 @@
 #include "simulation/CacheWalk.hpp"
 #include "simulation/LoadStage.hpp"
 #include "simulation/StepProfile.hpp"
+#include "simulation/RestSettings.hpp"
 #include "simulation/StepSettings.hpp"
 #include "simulation/WorldState.hpp"
 
@@ -58,19 +59,6 @@ struct Material {
   double restitution = 0.05;           ///< normal coefficient of restitution (unit: -)
   double penaltyModulus = 1.0e9;       ///< contact pressure per unit relative depth (unit: Pa)
   double tangentialStiffnessRatio = 8.0 / 9.0; ///< k_t / k_n (unit: -): Mindlin 2(1-nu)/(2-nu), nu = 0.2 (concrete)
-};
-
-/// When bodies may sleep: a sleeping body is skipped by the integrator and its pairs with other
-/// sleeping or static bodies are not examined, so a settled pack costs nothing until something
-/// moving touches it.
-struct SleepSettings {
-  bool enabled = true;
-  double linearSpeed = 1.0e-3;  ///< centroid speed below which a body is at rest (unit: m/s)
-  double angularSpeed = 1.0e-3; ///< angular speed below which a body is at rest (unit: rad/s)
-  double time = 0.5;            ///< a whole contact island must rest this long to sleep (unit: s)
-  /// A sleeping body wakes when its external load (LoadStage) differs from the load it fell asleep
-  /// under by more than this fraction of its weight m |g| (unit: -).
-  double wakeLoadFraction = 0.01;
 };
 
 /// The energy guard rail: without work from outside (gravity is in the energy, contacts only
@@ -106,12 +94,6 @@ enum class ContactSolverKind { Penalty, Constraint };
 /// 2 (sqrt(1 + zeta^2) - zeta); Implicit, trapezoidal in the dashpot, stable below the root of
 /// h^2 (1 + zeta h) = 4, 1.8 to 4.3 times longer steps at e = 0.1 to 0.01 for rebounds further from e.
 enum class DashpotIntegration { Explicit, Implicit };
-
-/// Viscous damping of the bodies' motion (io::BodyDampingSettings; docs/theory.md, "Body damping").
-struct BodyDamping {
-  double linear = 0.0;  ///< decay rate of the centroid velocity (unit: 1/s)
-  double angular = 0.0; ///< decay rate of the angular velocity (unit: 1/s)
-};
 
 /// Settings of the whole simulation.
 struct WorldSettings {
