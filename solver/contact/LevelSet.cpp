@@ -16,9 +16,6 @@ namespace armour::contact {
 
 namespace {
 
-/// Triangles per tree leaf: small enough that a leaf test is cheap, large enough that the tree
-/// stays shallow (4 is the usual compromise for closest-point queries).
-constexpr std::int32_t kLeafSize = 4;
 /// Deepest tree the fixed traversal stack can hold. A median split halves the triangle count per
 /// level, so 2^64 triangles would be needed to reach it.
 constexpr int kStackSize = 64;
@@ -65,19 +62,9 @@ MeshDistance::MeshDistance(const TriangleMesh& mesh) {
     }
   }
 
-  std::vector<Vec3> centroids(mesh.triangleCount());
-  std::vector<Box3> boxes(mesh.triangleCount());
-  originalIndex_.resize(mesh.triangleCount());
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    const auto p = mesh.corners(t);
-    centroids[t] = (p[0] + p[1] + p[2]) / 3.0;
-    for (const auto& q : p) {
-      boxes[t].extend(q);
-    }
-    originalIndex_[t] = static_cast<std::int32_t>(t);
-  }
-  nodes_.reserve(2 * mesh.triangleCount() / kLeafSize + 1);
-  buildNode(0, count, boxes, centroids);
+  geometry::TriangleTree tree = geometry::buildTriangleTree(mesh);
+  nodes_ = std::move(tree.nodes);
+  originalIndex_ = std::move(tree.order);
 
   // Store triangle data in tree order so a leaf reads contiguous memory.
   corners_.resize(mesh.triangleCount());
@@ -95,45 +82,6 @@ MeshDistance::MeshDistance(const TriangleMesh& mesh) {
       vertexNormals_[s][k] = vertexNormal[f[k]];
     }
   }
-}
-
-std::int32_t MeshDistance::buildNode(std::int32_t begin, std::int32_t end, const std::vector<Box3>& boxes,
-                                     const std::vector<Vec3>& centroids) {
-  const auto index = static_cast<std::int32_t>(nodes_.size());
-  nodes_.emplace_back();
-  Box3 box;
-  Box3 centreBox;
-  for (std::int32_t s = begin; s < end; ++s) {
-    const auto t = static_cast<std::size_t>(originalIndex_[static_cast<std::size_t>(s)]);
-    box.extend(boxes[t].min);
-    box.extend(boxes[t].max);
-    centreBox.extend(centroids[t]);
-  }
-  nodes_[static_cast<std::size_t>(index)].lo = box.min;
-  nodes_[static_cast<std::size_t>(index)].hi = box.max;
-  if (end - begin <= kLeafSize) {
-    nodes_[static_cast<std::size_t>(index)].first = begin;
-    nodes_[static_cast<std::size_t>(index)].count = end - begin;
-    return index;
-  }
-  // Split at the median centroid along the longest axis of the centroids' box: balanced, so the
-  // depth is log2(triangles / leaf size) and the traversal stack cannot overflow.
-  int axis = 0;
-  centreBox.size().maxCoeff(&axis);
-  const std::int32_t middle = begin + (end - begin) / 2;
-  // Ties broken by triangle index so the tree (and which of two equidistant triangles a query
-  // reports) does not depend on the standard library's selection algorithm.
-  std::nth_element(originalIndex_.begin() + begin, originalIndex_.begin() + middle, originalIndex_.begin() + end,
-                   [&](std::int32_t a, std::int32_t b) {
-                     const double ca = centroids[static_cast<std::size_t>(a)][axis];
-                     const double cb = centroids[static_cast<std::size_t>(b)][axis];
-                     return ca < cb || (ca == cb && a < b);
-                   });
-  buildNode(begin, middle, boxes, centroids);
-  const std::int32_t second = buildNode(middle, end, boxes, centroids);
-  nodes_[static_cast<std::size_t>(index)].first = second;
-  nodes_[static_cast<std::size_t>(index)].count = 0;
-  return index;
 }
 
 std::size_t MeshDistance::memoryBytes() const {

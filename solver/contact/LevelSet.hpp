@@ -16,6 +16,7 @@
 
 #include "geometry/ClosestPoint.hpp"
 #include "geometry/TriangleMesh.hpp"
+#include "geometry/TriangleTree.hpp"
 
 #include <array>
 #include <cstddef>
@@ -67,14 +68,7 @@ public:
   [[nodiscard]] std::size_t memoryBytes() const;
 
 private:
-  struct Node {
-    Vec3 lo;                  // box of the node's triangles
-    Vec3 hi;
-    std::int32_t first = 0;   // leaf: first triangle in order_; inner: index of the second child
-    std::int32_t count = 0;   // leaf: number of triangles; inner: 0 (first child follows the node)
-  };
-  std::int32_t buildNode(std::int32_t begin, std::int32_t end, const std::vector<Box3>& boxes,
-                         const std::vector<Vec3>& centroids);
+  using Node = geometry::TriangleTree::Node;
 
   std::vector<std::array<Vec3, 3>> corners_;   // triangle corners, tree order
   std::vector<Vec3> faceNormals_;              // unit normals, tree order

@@ -13,7 +13,6 @@ namespace armour::geometry {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr int kLeafTriangles = 4;
 /// Barycentric slack of the triangle test: a line within 1e-10 of a triangle's size outside it
 /// still hits, so a line through a shared edge cannot fall between the two triangles by round-off.
 constexpr double kBarycentricSlack = 1e-10;
@@ -21,68 +20,19 @@ constexpr double kBarycentricSlack = 1e-10;
 } // namespace
 
 MeshRayCaster::MeshRayCaster(const TriangleMesh& mesh) {
-  const auto n = static_cast<std::int32_t>(mesh.triangleCount());
-  std::vector<Vec3> centroids(static_cast<std::size_t>(n));
-  std::vector<std::int32_t> order(static_cast<std::size_t>(n));
-  for (std::int32_t t = 0; t < n; ++t) {
-    const auto c = mesh.corners(static_cast<std::size_t>(t));
-    centroids[static_cast<std::size_t>(t)] = (c[0] + c[1] + c[2]) / 3.0;
-    order[static_cast<std::size_t>(t)] = t;
-  }
-  if (n == 0) {
-    return;
-  }
-  nodes_.reserve(2 * static_cast<std::size_t>(n) / kLeafTriangles + 2);
-  build(0, n, order, centroids, mesh);
-  v0_.reserve(order.size());
-  e1_.reserve(order.size());
-  e2_.reserve(order.size());
-  for (const std::int32_t t : order) {
+  // A face lying in a coordinate plane gives a flat box; the pad keeps the slab test of a line
+  // hitting it exactly from failing by round-off.
+  TriangleTree tree = buildTriangleTree(mesh, 1e-9);
+  nodes_ = std::move(tree.nodes);
+  v0_.reserve(tree.order.size());
+  e1_.reserve(tree.order.size());
+  e2_.reserve(tree.order.size());
+  for (const std::int32_t t : tree.order) {
     const auto c = mesh.corners(static_cast<std::size_t>(t));
     v0_.push_back(c[0]);
     e1_.push_back(c[1] - c[0]);
     e2_.push_back(c[2] - c[0]);
   }
-}
-
-std::int32_t MeshRayCaster::build(std::int32_t begin, std::int32_t end, std::vector<std::int32_t>& order,
-                                  const std::vector<Vec3>& centroids, const TriangleMesh& mesh) {
-  const auto index = static_cast<std::int32_t>(nodes_.size());
-  nodes_.emplace_back();
-  geometry::Box3 box, centres;
-  for (std::int32_t k = begin; k < end; ++k) {
-    const auto t = static_cast<std::size_t>(order[static_cast<std::size_t>(k)]);
-    for (const Vec3& p : mesh.corners(t)) {
-      box.extend(p);
-    }
-    centres.extend(centroids[t]);
-  }
-  // A face lying in a coordinate plane gives a flat box; the pad keeps the slab test of a line
-  // hitting it exactly from failing by round-off.
-  const double pad = 1e-9 * std::max(box.size().maxCoeff(), 1e-300);
-  nodes_[static_cast<std::size_t>(index)].lo = (box.min.array() - pad).matrix();
-  nodes_[static_cast<std::size_t>(index)].hi = (box.max.array() + pad).matrix();
-  if (end - begin <= kLeafTriangles) {
-    nodes_[static_cast<std::size_t>(index)].first = begin;
-    nodes_[static_cast<std::size_t>(index)].count = end - begin;
-    return index;
-  }
-  int axis = 0;
-  centres.size().maxCoeff(&axis);
-  const std::int32_t mid = begin + (end - begin) / 2;
-  // Ties broken by triangle index: the tree (and so the order hits are found in) is the same on
-  // every platform.
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](std::int32_t a, std::int32_t b) {
-                     const double ca = centroids[static_cast<std::size_t>(a)][axis];
-                     const double cb = centroids[static_cast<std::size_t>(b)][axis];
-                     return ca < cb || (ca == cb && a < b);
-                   });
-  build(begin, mid, order, centroids, mesh);
-  const std::int32_t second = build(mid, end, order, centroids, mesh);
-  nodes_[static_cast<std::size_t>(index)].first = second;
-  nodes_[static_cast<std::size_t>(index)].count = 0;
-  return index;
 }
 
 double MeshRayCaster::firstHit(const Vec3& origin, const Vec3& direction) const {

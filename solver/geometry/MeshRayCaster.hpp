@@ -6,6 +6,7 @@
 /// stones (analysis/UnderlayerSurface).
 
 #include "geometry/TriangleMesh.hpp"
+#include "geometry/TriangleTree.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -36,14 +37,7 @@ public:
   [[nodiscard]] std::size_t triangleCount() const { return v0_.size(); }
 
 private:
-  struct Node {
-    Vec3 lo;                  // box of the node's triangles
-    Vec3 hi;
-    std::int32_t first = 0;   // leaf: first triangle; inner: index of the second child (the first follows)
-    std::int32_t count = 0;   // leaf: number of triangles; inner: 0
-  };
-  std::int32_t build(std::int32_t begin, std::int32_t end, std::vector<std::int32_t>& order,
-                     const std::vector<Vec3>& centroids, const TriangleMesh& mesh);
+  using Node = TriangleTree::Node;
 
   std::vector<Vec3> v0_, e1_, e2_; // triangle corner 0 and edges 0->1, 0->2, in tree order
   std::vector<Node> nodes_;

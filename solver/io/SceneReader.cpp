@@ -88,18 +88,17 @@ std::vector<std::string_view> generatorNames() {
 // materials
 // ---------------------------------------------------------------------------------------------
 
-const KeyList kMaterialKeys{"density", "friction", "restitution", "damping_ratio", "penalty", "tangential_stiffness_ratio"};
 const KeyList kFrictionKeys{"static", "dynamic"};
 
 Material readMaterial(const Context& ctx, const std::string& name, const YAML::Node& node, const std::string& path) {
-  const Block b(ctx, node, path, kMaterialKeys);
+  const Block b(ctx, node, path, tables::materials());
   Material m;
   m.name = name;
-  m.density = b.number("density", {"kg/m^3", kPositive, "2400 for concrete, 2650 for rock"});
+  m.density = b.number("density");
 
   if (!b.has("friction")) b.failMissing("friction", "Coulomb coefficient (unit: -), e.g. friction: 0.75, or "
                                                     "friction: {static: 0.75, dynamic: 0.6}");
-  const Num friction{"-", kNonNegative, "0.75 (seed 001), 0.6 for concrete on rock"};
+  const Num& friction = tables::materials().find("friction")->num;
   if (b.get("friction").IsMap()) {
     const Block f(ctx, b.get("friction"), b.path("friction"), kFrictionKeys);
     m.frictionStatic = f.number("static", friction);
@@ -118,19 +117,18 @@ Material readMaterial(const Context& ctx, const std::string& name, const YAML::N
                                   "the contact's damping ratio");
   if (dissipation == 0) {
     // e = 0 is out: the contact law would need an infinite damping ratio to reach it.
-    m.restitution = b.number("restitution", {"-", kFraction, "0.05 for concrete (seed 001)"});
+    m.restitution = b.number("restitution");
   } else {
     m.restitution.reset();
-    m.dampingRatio = b.number("damping_ratio", {"-", kNonNegative, "0.3; 1 = critical"});
+    m.dampingRatio = b.number("damping_ratio");
   }
 
-  m.penalty = b.number("penalty", {"Pa", kPositive, "1e9 (about 3 % of concrete's Young's modulus)"}, 1.0e9);
+  m.penalty = b.number("penalty", m.penalty);
   // Outside this band the overlap or the time step becomes unreasonable for metre-sized units:
   // rho g Dn / p > 2e-3 (soft) or dt ~ sqrt(rho Dn^2 / p) below a tenth of a millisecond (stiff).
   if (m.penalty < 1e7 || m.penalty > 1e11)
     b.warnValue("penalty", "outside 1e7..1e11 Pa: expect large overlaps (soft) or a very small time step (stiff)");
-  m.tangentialStiffnessRatio = b.number("tangential_stiffness_ratio",
-                                        {"-", kFraction, "0.889 (Mindlin, Poisson ratio 0.2)"}, 8.0 / 9.0);
+  m.tangentialStiffnessRatio = b.number("tangential_stiffness_ratio", m.tangentialStiffnessRatio);
   return m;
 }
 
@@ -551,10 +549,6 @@ void readStatic(const Context& ctx, const YAML::Node& node, Scene& scene) {
 // run settings and the whole file
 // ---------------------------------------------------------------------------------------------
 
-const KeyList kTopKeys{"description", "seed",    "gravity",   "duration", "time_step", "time_step_safety", "contact",
-                       "output",      "sleep",   "materials", "shapes",   "bodies",    "static",           "hydro",
-                       "placement",   "initial_state", "body_damping"};
-
 /// contact.constraint (the constraint solver's settings); warned about under the penalty solver.
 void readConstraintSettings(const Block& c, Scene& scene) {
   const Block k(c.context(), c.has("constraint") ? c.get("constraint") : YAML::Node(), tables::contactConstraint());
@@ -588,7 +582,7 @@ void readRunSettings(const Block& top, Scene& scene) {
                                                                     "beside the placed scene"))
                              .lexically_normal();
   scene.gravity = top.vec3("gravity", {"m/s^2", kAnyNumber, "gravity: [0, 0, -9.81]"}, scene.gravity);
-  scene.duration = top.number("duration", {"s", kPositive, "duration: 10, simulated seconds"});
+  scene.duration = top.number("duration");
 
   if (top.has("time_step")) {
     const YAML::Node dt = top.get("time_step");
@@ -599,7 +593,7 @@ void readRunSettings(const Block& top, Scene& scene) {
       scene.timeStep.value = top.number("time_step", {"s", kPositive, "time_step: 1e-4, or time_step: auto"});
     }
   }
-  scene.timeStep.safety = top.number("time_step_safety", {"-", kFraction, "0.2 of the stability limit"}, scene.timeStep.safety);
+  scene.timeStep.safety = top.number("time_step_safety", scene.timeStep.safety);
   if (!scene.timeStep.automatic && top.has("time_step_safety"))
     top.warnValue("time_step_safety", "applies to time_step: auto only; the fixed time step is used as given");
   if (!scene.timeStep.automatic && scene.timeStep.value > scene.duration)
@@ -813,8 +807,8 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
     throw core::InputError(fmt::format("{}: the scene is empty; it needs at least 'materials', 'bodies' and 'duration' "
                                        "(docs/scene-file.md has an example)",
                                        sourceName));
-  const Block top(ctx, root, "", kTopKeys);
-  scene.seed = top.integer("seed", 0, "the default seed of random shapes, height fields and grid jitter", 1);
+  const Block top(ctx, root, "", tables::top());
+  scene.seed = top.integer("seed", scene.seed);
   ctx.seed = scene.seed;
 
   readRunSettings(top, scene);

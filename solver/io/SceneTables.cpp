@@ -22,6 +22,78 @@ const KeyList kDashpots{"explicit", "implicit"};
 
 } // namespace
 
+const Table& top() {
+  static const Table table = [] {
+    const Scene d;
+    return Table("top", {
+      {.name = "description", .kind = KeyKind::Other, .defaultText = "\"\"",
+       .meaning = R"md(free text, copied to the run log)md", .type = "text"},
+      {.name = "seed", .kind = KeyKind::Integer, .num = {"-"}, .defaultText = fmt::format("{}", d.seed),
+       .meaning = R"md(default seed of random shapes, height fields and grid jitter)md",
+       .intWhat = "the default seed of random shapes, height fields and grid jitter"},
+      {.name = "initial_state", .kind = KeyKind::Other, .defaultText = "none", .meaning =
+        R"md(the state file `armour place` writes beside a placed scene (`<stem>-placed-state.nc`): a new run )md"
+        R"md(starts from it (positions, velocities, contacts and their friction springs; every body awake, )md"
+        R"md(time 0) instead of from the bodies' positions alone. Refused if the scene's bodies are not the )md"
+        R"md(state's (names, order, positions to 1 um))md", .type = "path"},
+      {.name = "gravity", .kind = KeyKind::Other, .num = {"m/s^2"},
+       .defaultText = fmt::format("[{}, {}, {}]", d.gravity.x(), d.gravity.y(), d.gravity.z()), .type = "[x, y, z]"},
+      {.name = "duration", .num = {"s", kPositive, "duration: 10, simulated seconds"}, .defaultText = "required",
+       .meaning = R"md(simulated time)md"},
+      {.name = "time_step", .kind = KeyKind::Other, .num = {"s"},
+       .defaultText = d.timeStep.automatic ? "auto" : show(d.timeStep.value), .meaning =
+        R"md(`auto`: the largest stable step for the stiffest contact and lightest body, times )md"
+        R"md(`time_step_safety`)md", .type = "`auto` or number > 0"},
+      {.name = "time_step_safety", .num = {"-", kFraction, "0.2 of the stability limit"},
+       .defaultText = show(d.timeStep.safety), .meaning = R"md(fraction of the stability limit used by `auto`)md"},
+      {.name = "contact", .kind = KeyKind::Other, .meaning = R"md(see [Contact](#contact))md", .type = "mapping"},
+      {.name = "output", .kind = KeyKind::Other, .meaning = R"md(see [Output](#output))md", .type = "mapping"},
+      {.name = "sleep", .kind = KeyKind::Other, .meaning = R"md(see [Sleep](#sleep))md", .type = "mapping"},
+      {.name = "body_damping", .kind = KeyKind::Other, .defaultText = "off",
+       .meaning = R"md(see [Body damping](#body-damping))md", .type = "mapping"},
+      {.name = "materials", .kind = KeyKind::Other, .defaultText = "required",
+       .meaning = R"md(see [Materials](#materials))md", .type = "mapping name -> material"},
+      {.name = "shapes", .kind = KeyKind::Other, .defaultText = "none", .meaning = R"md(see [Shapes](#shapes))md",
+       .type = "mapping name -> shape"},
+      {.name = "bodies", .kind = KeyKind::Other, .defaultText = "required (optional with `placement`)",
+       .meaning = R"md(see [Bodies](#bodies))md", .type = "list"},
+      {.name = "static", .kind = KeyKind::Other, .defaultText = "none",
+       .meaning = R"md(see [Static geometry](#static-geometry))md", .type = "list"},
+      {.name = "hydro", .kind = KeyKind::Other, .defaultText = "none",
+       .meaning = R"md(loads of the water on the units: see [Hydrodynamic loads](#hydrodynamic-loads))md",
+       .type = "mapping"},
+      {.name = "placement", .kind = KeyKind::Other, .defaultText = "none",
+       .meaning = R"md(units for `armour place` to add: see [placement.md](placement.md))md", .type = "mapping"},
+    });
+  }();
+  return table;
+}
+
+const Table& materials() {
+  static const Table table = [] {
+    const Material d;
+    return Table("materials", {
+      {.name = "density", .num = {"kg/m^3", kPositive, "2400 for concrete, 2650 for rock"}, .defaultText = "required",
+       .meaning = R"md(2350-2400 for armour concrete (seed 001: 2350), 2650 for rock)md"},
+      {.name = "friction", .kind = KeyKind::Other,
+       .num = {"-", kNonNegative, "0.75 (seed 001), 0.6 for concrete on rock"}, .defaultText = "required", .meaning =
+        R"md(Coulomb coefficients; a single number sets both; dynamic <= static. Seed 001 uses 0.75 for both )md"
+        R"md((0.6 is usual for concrete on rock; the higher value stands in for the interlocking the smooth )md"
+        R"md(underlayer lacks))md", .type = "number >= 0, or `{static, dynamic}`"},
+      {.name = "restitution", .num = {"-", kFraction, "0.05 for concrete (seed 001)"}, .defaultText = "one of the two",
+       .meaning = R"md(normal coefficient of restitution; seed 001: 0.05)md"},
+      {.name = "damping_ratio", .num = {"-", kNonNegative, "0.3; 1 = critical"}, .defaultText = "one of the two",
+       .meaning = R"md(damping over critical damping of the contact patch's spring-dashpot)md"},
+      {.name = "penalty", .num = {"Pa", kPositive, "1e9 (about 3 % of concrete's Young's modulus)"},
+       .defaultText = show(d.penalty), .meaning = R"md(penalty modulus p of the contact law (below))md"},
+      {.name = "tangential_stiffness_ratio", .num = {"-", kFraction, "0.889 (Mindlin, Poisson ratio 0.2)"},
+       .defaultText = fmt::format("8/9 = {:.3f}", d.tangentialStiffnessRatio),
+       .meaning = R"md(tangential over normal contact stiffness)md"},
+    });
+  }();
+  return table;
+}
+
 const Table& contact() {
   static const Table table = [] {
     const ContactSettings d;
@@ -224,8 +296,8 @@ const Table& bodyDamping() {
 }
 
 const std::vector<const Table*>& all() {
-  static const std::vector<const Table*> list{&contact(), &contactFdem(), &contactConstraint(), &output(), &sleep(),
-                                              &bodyDamping()};
+  static const std::vector<const Table*> list{&top(),    &materials(), &contact(),     &contactFdem(),
+                                              &contactConstraint(), &output(), &sleep(), &bodyDamping()};
   return list;
 }
 

@@ -12,6 +12,9 @@
 
 namespace armour::io::tables {
 
+/// The top level of the file (its path in messages is empty; "top" names its docs table).
+const schema::Table& top();
+const schema::Table& materials();
 const schema::Table& contact();
 const schema::Table& contactFdem();
 const schema::Table& contactConstraint();

@@ -193,7 +193,15 @@ struct Key {
 };
 
 /// The default of a number as the docs show it ("0.001", "3", "1e-06").
-inline std::string show(double v) { return fmt::format("{}", v); }
+inline std::string show(double v) {
+  // Large round numbers as engineers write them: 1e9, not 1000000000.
+  if (std::abs(v) >= 1e6 && v == std::round(v)) {
+    // "{:e}" of a round number: mantissa digits, then the exponent, e.g. 1.000000e+09.
+    const int exponent = static_cast<int>(std::floor(std::log10(std::abs(v))));
+    return fmt::format("{}e{}", v / std::pow(10.0, exponent), exponent);
+  }
+  return fmt::format("{}", v);
+}
 inline std::string show(bool v) { return v ? "true" : "false"; }
 
 /// A block's keys, in the order the docs list them.

@@ -6,6 +6,7 @@
 //   bench_peers [--scene cubes|corelocs] [--seconds 10] [--penalty-seconds S] [--penalty-cpu-limit C]
 //               [--solvers constraint,bullet-box,bullet-hull,bullet-compound,penalty]
 //               [--pieces 3|5|3,5] [--no-sleep] [--bullet-iterations 10] [--count N] [--seed 1]
+//               [--trace-unit N --trace-window FROM TO]
 //
 // The scene is bench_solver's pile with --placement drop (SolverBenchPile.cpp, buildPile): N units
 // of Dn = 1 m (concrete 2400 kg/m^3, friction 0.6, restitution 0.1) released at rest from a jittered
@@ -52,6 +53,31 @@ using armour::bench::threadCpuNow;
 /// A unit slower than this is still (unit: m/s); one that moved less than this x 1 s over the
 /// drift window has not drifted: 1 cm/s, a hundredth of Dn per second.
 constexpr double kStill = 0.01;
+
+/// --trace-unit: one armour unit's state and loaded contact points at every step of a window, to
+/// tell a unit sliding at the Coulomb limit (|f_t| / f_n = mu at its points) from solver jitter.
+struct UnitTrace {
+  long unit = -1; ///< body index; -1: none
+  double from = 0.0, to = 0.0; ///< simulated window (s)
+};
+
+void printTrace(const sim::World& world, const UnitTrace& t) {
+  if (t.unit < 0 || world.time() < t.from - 1e-12 || world.time() > t.to + 1e-12) return;
+  const auto u = static_cast<sim::BodyId>(t.unit);
+  const Vec3 x = world.bodies().position(u);
+  fmt::print(stderr, "trace: t = {:.3f} s, unit {}: speed {:.4f} m/s, spin {:.4f} rad/s, centroid ({:.4f}, {:.4f}, {:.5f}) m\n",
+             world.time(), t.unit, world.bodies().velocity(u).norm(), world.bodies().worldAngularVelocity(u).norm(),
+             x.x(), x.y(), x.z());
+  Vec3 total = Vec3::Zero();
+  for (const sim::TracedContact& c : world.tracedContacts()) {
+    total += c.force;
+    if (c.normalForce <= 0.0) continue;
+    const double tangential = std::sqrt(std::max(0.0, c.force.squaredNorm() - c.normalForce * c.normalForce));
+    fmt::print(stderr, "trace:   other {:>4} at ({:.3f}, {:.3f}, {:.3f}) m: normal {:.1f} N, |f_t| / f_n {:.3f}\n",
+               c.other, c.point.x(), c.point.y(), c.point.z(), c.normalForce, tangential / c.normalForce);
+  }
+  fmt::print(stderr, "trace:   contact force on the unit ({:.1f}, {:.1f}, {:.1f}) N\n", total.x(), total.y(), total.z());
+}
 
 /// What any of the solvers offers the measuring loop.
 struct Stepper {
@@ -224,6 +250,11 @@ int main(int argc, char** argv) {
                  "stop the penalty solver at the whole simulated second after which the next would pass this "
                  "much thread CPU time (s); 0: no limit");
   app.add_option("--drift-window", driftWindow, "the drift is the largest displacement over this last window (s)");
+  UnitTrace trace;
+  std::vector<double> traceWindow;
+  app.add_option("--trace-unit", trace.unit, "armour solvers: print this unit's speed and its loaded contact points "
+                                             "(normal force, |f_t| / f_n) at every step of --trace-window to stderr");
+  app.add_option("--trace-window", traceWindow, "FROM TO: the simulated window of --trace-unit (s)")->expected(2);
   app.add_option("--solvers", solvers,
                  "comma-separated, run in this order: constraint, bullet-box (cubes), bullet-hull, bullet-compound, "
                  "penalty; default: constraint, bullet-box, bullet-hull, penalty (cubes) or constraint, "
@@ -254,6 +285,14 @@ int main(int argc, char** argv) {
     } else {
       runs.emplace_back(solver, pieces.front());
     }
+  }
+  if (trace.unit >= 0) {
+    if (traceWindow.size() != 2 || !(traceWindow[0] <= traceWindow[1])) {
+      fmt::print(stderr, "error: --trace-unit needs --trace-window FROM TO with FROM <= TO (s), e.g. --trace-window 9 10\n");
+      return 1;
+    }
+    trace.from = traceWindow[0];
+    trace.to = traceWindow[1];
   }
   omp_set_num_threads(1); // one thread each: armour's OpenMP loops run on the measuring thread
 
@@ -300,7 +339,11 @@ int main(int argc, char** argv) {
         const bench::PileScene p = bench::buildPile(world, o);
         Stepper s;
         s.bodies = world.bodies().size();
-        s.step = [&] { world.step(); };
+        if (trace.unit >= 0) world.setTracedBodies({static_cast<sim::BodyId>(trace.unit)});
+        s.step = [&] {
+          world.step();
+          printTrace(world, trace);
+        };
         s.time = [&] { return world.time(); };
         s.position = [&](std::size_t i) { return world.bodies().position(static_cast<sim::BodyId>(i)); };
         s.velocity = [&](std::size_t i) { return world.bodies().velocity(static_cast<sim::BodyId>(i)); };

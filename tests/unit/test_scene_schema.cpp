@@ -53,6 +53,11 @@ TEST(SceneSchema, TheTablesShowTheSettingsStructsDefaults) {
   EXPECT_CONTAINS(c, "| `friction_anchors` | true/false | | false |");
   EXPECT_CONTAINS(schemaTable("contact"), "| `solver` | `penalty` or `constraint` | | `penalty` |");
   EXPECT_CONTAINS(schemaTable("contact"), "| `max_overlap` | number in (0, 1] | Dn | 0.25 |");
+  // Large round defaults as engineers write them (Material{}.penalty), and the top level's.
+  EXPECT_CONTAINS(schemaTable("materials"), fmt::format("| `penalty` | number > 0 | Pa | 1e9 |"));
+  EXPECT_EQ(Material{}.penalty, 1e9);
+  EXPECT_CONTAINS(schemaTable("top"), "| `time_step_safety` | number in (0, 1] | - | 0.2 |");
+  EXPECT_CONTAINS(schemaTable("top"), "| `gravity` | [x, y, z] | m/s^2 | [0, 0, -9.81] |");
   // Header, rule and one row per key.
   EXPECT_EQ(std::count(s.begin(), s.end(), '\n'), 2 + 5);
   EXPECT_THROW((void)schemaTable("sleeep"), InputError);
@@ -69,6 +74,9 @@ TEST(SceneSchema, TheReaderChecksKeysAndRangesFromTheSameTable) {
                   "contact.solver = constrained: expected one of penalty, constraint (did you mean 'constraint'?)");
   EXPECT_CONTAINS(errorFrom(kBody + "contact: {solver: constraint, constraint: {substeps: 65}}\n"),
                   "contact.constraint.substeps = 65: at most 64 substeps; use a smaller time_step instead");
+  EXPECT_CONTAINS(errorFrom(kBody + "time_step_safety: 0\n"), "time_step_safety = 0: must be in (0, 1] (unit: -)");
+  EXPECT_CONTAINS(errorFrom("duration: 1\nmaterials:\n  rock: {density: -2650, friction: 0.6, restitution: 0.1}\n"),
+                  "materials.rock.density = -2650: must be > 0 (unit: kg/m^3), e.g. 2400 for concrete, 2650 for rock");
   const Scene scene = parseScene(kBody + "sleep: {time: 2}\nbody_damping: {linear: 0.9}\n",
                                  std::filesystem::current_path(), "test.yaml");
   EXPECT_EQ(scene.sleep.time, 2.0);
