@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/AnalyseCommands.hpp"
 
-#include "app/PackAnalysis.hpp"
+#include "measure/PackAnalysis.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
@@ -40,17 +40,18 @@ void plot(const fs::path& csv, const fs::path& folder) {
 
 void analyse(const AnalyseOptions& o) {
   const io::Scene scene = io::readScene(o.scene);
-  AnalyseSettings settings;
+  measure::AnalyseSettings settings;
   settings.unitPrefix = o.prefix;
   settings.axis = o.axis;
   settings.stateName = o.state;
-  std::optional<PoseMap> state, reference;
-  if (!o.state.empty()) state = readPoses(o.state);
-  if (!o.reference.empty()) reference = readPoses(o.reference);
-  const PackReport report = analysePack(scene, settings, state ? &*state : nullptr, reference ? &*reference : nullptr);
+  std::optional<measure::PoseMap> state, reference;
+  if (!o.state.empty()) state = measure::readPoses(o.state);
+  if (!o.reference.empty()) reference = measure::readPoses(o.reference);
+  const measure::PackReport report =
+      measure::analysePack(scene, settings, state ? &*state : nullptr, reference ? &*reference : nullptr);
   const fs::path folder = o.output.empty() ? scene.baseDir / (scene.name + "-analysis") : fs::absolute(o.output);
-  writePackReport(report, folder);
-  std::cout << packText(report);
+  measure::writePackReport(report, folder);
+  std::cout << measure::packText(report);
   if (o.plots) plot(folder / "units.csv", folder);
   std::cout << fmt::format("tables: {}/units.csv, pack.json, pack.txt\n", folder.string());
 }

@@ -2,7 +2,7 @@
 #pragma once
 /// @file AnalyseCommands.hpp
 /// `armour analyse scene.yaml [--state final_state.csv] [--reference ...]`: the pack measures of a
-/// scene or a run (PackAnalysis.hpp) as units.csv, pack.json and pack.txt, with PNGs on request;
+/// scene or a run (measure/PackAnalysis.hpp) as units.csv, pack.json and pack.txt, with PNGs on request;
 /// `armour ensemble placement.yaml --runs N`: N placements with seeds S..S+N-1 and the mean +-
 /// standard deviation of each measure (seed 001 Table 1). docs/placement.md.
 

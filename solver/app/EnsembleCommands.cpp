@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/EnsembleCommands.hpp"
 
-#include "app/PackAnalysis.hpp"
+#include "measure/PackAnalysis.hpp"
 #include "app/PlacementCheckpoint.hpp"
 #include "app/RunCommands.hpp"
 #include "app/StopSignals.hpp"
@@ -310,13 +310,13 @@ std::vector<double> placeMember(const EnsembleOptions& o, const std::string& tex
   }
   placement::writePlacementOutputs(text, placed, m.folder / "placed.yaml", m.folder);
   // Displacements from where each unit was released (seed 001 test 3: the crane positions).
-  PoseMap release;
+  measure::PoseMap release;
   for (const auto& u : placed.units) release[u.name] = {u.gridPoint, u.releaseOrientation};
-  AnalyseSettings settings;
+  measure::AnalyseSettings settings;
   settings.unitPrefix = unitPrefix = scene.placement.namePrefix + "_";
   settings.axis = o.axis;
-  const PackReport report = analysePack(placed.scene, settings, nullptr, &release);
-  writePackReport(report, m.folder / "analysis");
+  const measure::PackReport report = measure::analysePack(placed.scene, settings, nullptr, &release);
+  measure::writePackReport(report, m.folder / "analysis");
   return {report.displacement->deltaRms,
           report.displacement->deltaRmsHorizontal,
           report.p2Mean.p2,
@@ -364,14 +364,14 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
     throw;
   }
   const io::Scene scene = io::readScene(placedScene);
-  const PoseMap before = posesOf(scene);
-  const PoseMap after = readPoses(m.run / "final_state.csv");
-  AnalyseSettings settings;
+  const measure::PoseMap before = measure::posesOf(scene);
+  const measure::PoseMap after = measure::readPoses(m.run / "final_state.csv");
+  measure::AnalyseSettings settings;
   settings.unitPrefix = unitPrefix;
   settings.axis = o.axis;
   settings.stateName = (m.run / "final_state.csv").string();
-  const PackReport report = analysePack(scene, settings, &after, &before);
-  writePackReport(report, m.run / "analysis");
+  const measure::PackReport report = measure::analysePack(scene, settings, &after, &before);
+  measure::writePackReport(report, m.run / "analysis");
   const analysis::PackDisplacement& d = *report.displacement;
   const auto count = [&](double threshold) {
     for (std::size_t k = 0; k < d.thresholdsDn.size(); ++k)

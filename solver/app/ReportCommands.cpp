@@ -2,7 +2,7 @@
 #include "app/ReportCommands.hpp"
 
 #include "analysis/DamageReport.hpp"
-#include "app/PackAnalysis.hpp"
+#include "measure/PackAnalysis.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 #include "core/JsonWriter.hpp"
@@ -53,13 +53,13 @@ analysis::DamageReportSettings settingsWithStorm(const ReportOptions& o) {
 /// P2 and porosity of the scene's pack by `armour analyse`'s pack analysis.
 analysis::PackMeasurer packMeasurer(const io::Scene& scene) {
   return [&scene](const std::string& unitPrefix, const std::string& axis, const analysis::ReportPoses* state) {
-    AnalyseSettings settings;
+    measure::AnalyseSettings settings;
     settings.unitPrefix = unitPrefix;
     settings.axis = axis;
-    PoseMap poses;
+    measure::PoseMap poses;
     if (state)
       for (const auto& [name, pose] : *state) poses[name] = {pose.position, pose.orientation};
-    const PackReport pack = analysePack(scene, settings, state ? &poses : nullptr);
+    const measure::PackReport pack = measure::analysePack(scene, settings, state ? &poses : nullptr);
     analysis::PackMeasures m;
     m.p2 = pack.p2Mean.p2;
     m.p2Q = pack.p2Q.p2;

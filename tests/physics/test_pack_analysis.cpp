@@ -6,7 +6,7 @@
 // cubes; all nose axes (z) are aligned, so P2 = 1 in both forms; against itself every
 // displacement is zero, and against a copy moved by 0.5 m along y every unit moved 0.5 Dn.
 
-#include "app/PackAnalysis.hpp"
+#include "measure/PackAnalysis.hpp"
 #include "core/Error.hpp"
 #include "io/SceneReader.hpp"
 #include "simulation/SceneBuilder.hpp"
@@ -63,8 +63,8 @@ io::Scene cubesOnTheFace(std::size_t count) {
 
 TEST(PackAnalysis, TowerOfCubesHasKnownContactsAndOrder) {
   const io::Scene scene = settledTower();
-  app::AnalyseSettings settings;
-  const app::PackReport r = app::analysePack(scene, settings);
+  measure::AnalyseSettings settings;
+  const measure::PackReport r = measure::analysePack(scene, settings);
   ASSERT_EQ(r.units.size(), 3u);
   EXPECT_EQ(r.units[0].contactNumber, 2u);
   EXPECT_EQ(r.units[0].supportNeighbours, 1u);
@@ -79,15 +79,15 @@ TEST(PackAnalysis, TowerOfCubesHasKnownContactsAndOrder) {
   EXPECT_NEAR(r.p2Mean.p2, 1.0, 1e-9);
   EXPECT_FALSE(r.frameFromSlope); // no slope: a plane fitted through the centroids
 
-  app::PoseMap same, moved;
+  measure::PoseMap same, moved;
   for (const io::Body& b : scene.bodies) {
     same[b.name] = {b.position, b.orientation};
     moved[b.name] = {b.position - Eigen::Vector3d(0.0, 0.5, 0.0), b.orientation};
   }
-  const app::PackReport still = app::analysePack(scene, settings, nullptr, &same);
+  const measure::PackReport still = measure::analysePack(scene, settings, nullptr, &same);
   ASSERT_TRUE(still.displacement.has_value());
   EXPECT_EQ(still.displacement->deltaRms, 0.0);
-  const app::PackReport shifted = app::analysePack(scene, settings, nullptr, &moved);
+  const measure::PackReport shifted = measure::analysePack(scene, settings, nullptr, &moved);
   EXPECT_NEAR(shifted.displacement->deltaRms, 0.5, 1e-12);
   EXPECT_NEAR(shifted.displacement->maxDn, 0.5, 1e-12);
   EXPECT_EQ(shifted.displacement->movedCounts[0], 3u); // all moved more than 0.2 Dn
@@ -98,7 +98,7 @@ TEST(PackAnalysis, StateFilesAreReadOrRefusedWithTheLine) {
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "armour-state-test.csv";
   std::ofstream(file) << "body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz\n0,c0,1,2,3,1,0,0,0,0,0,0\n1,c1,1,2,nan,1,0,0,0,0,0,0\n";
   try {
-    (void)app::readPoses(file);
+    (void)measure::readPoses(file);
     FAIL() << "a NaN position accepted";
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("armour-state-test.csv:3"), std::string::npos) << e.what();
@@ -106,13 +106,13 @@ TEST(PackAnalysis, StateFilesAreReadOrRefusedWithTheLine) {
   }
   std::ofstream(file) << "name,x,y,z\nc0,1,2,3\n";
   try {
-    (void)app::readPoses(file);
+    (void)measure::readPoses(file);
     FAIL() << "a file without quaternions accepted";
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("column 'qw' missing"), std::string::npos) << e.what();
   }
   std::ofstream(file) << "body,name,x,y,z,qw,qx,qy,qz\n0,c0,1,2,3,0,0,0,2\n";
-  const app::PoseMap poses = app::readPoses(file);
+  const measure::PoseMap poses = measure::readPoses(file);
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_EQ(poses.at("c0").position, Eigen::Vector3d(1, 2, 3));
   EXPECT_NEAR(poses.at("c0").orientation.z(), 1.0, 1e-15); // normalised
@@ -138,7 +138,7 @@ static:
   - {type: slope, name: underlayer, material: concrete, origin: [0, 0], tan: 0.5, crest_height: 10}
 )";
   const io::Scene scene = io::parseScene(yaml, std::filesystem::temp_directory_path(), "slope.yaml");
-  const app::PackReport r = app::analysePack(scene, app::AnalyseSettings{});
+  const measure::PackReport r = measure::analysePack(scene, measure::AnalyseSettings{});
   ASSERT_TRUE(r.frameFromSlope);
   ASSERT_EQ(r.units.size(), 4u); // the fixed rock is a support
   const double expected[] = {0.499, 0.499, 1.498, 0.997 - 0.499}; // c0, c1, c2, c3 above their underlayer (Dn)
@@ -149,7 +149,7 @@ static:
   }
   EXPECT_EQ(r.touchingUnderlayer, 3u); // c0, c1 (the slope) and c3 (the rock)
   EXPECT_EQ(r.stackedUnits, 1u);
-  EXPECT_NE(app::packText(r).find("3 units touch it (0.750); 1 stacked (0.250"), std::string::npos) << app::packText(r);
+  EXPECT_NE(measure::packText(r).find("3 units touch it (0.750); 1 stacked (0.250"), std::string::npos) << measure::packText(r);
   // The layer thickness stands on the underlayer's mean top, here the one rock's (0.499 m above
   // the face), as armour place measures it: the units' mean top (0.999, 0.999, 1.998, 1.497 m)
   // less 0.499 m.
@@ -176,23 +176,23 @@ static:
 // naming the state.
 TEST(PackAnalysis, AUnitOffTheCrestEdgeIsOffTheModelAndAUnitInTheSlopeIsRefused) {
   const io::Scene scene = cubesOnTheFace(2);
-  app::PoseMap state = app::posesOf(scene);
+  measure::PoseMap state = measure::posesOf(scene);
   // c1 at rest on the seabed (z = 0) 40 m onshore of the crest edge (x = 6 m).
   state["c1"].position = Eigen::Vector3d(46.0, 0.0, 0.5 - 1e-6);
   state["c1"].orientation = Eigen::Quaterniond::Identity();
-  app::AnalyseSettings settings;
+  measure::AnalyseSettings settings;
   settings.stateName = "final_state.csv";
-  const app::PackReport r = app::analysePack(scene, settings, &state);
+  const measure::PackReport r = measure::analysePack(scene, settings, &state);
   EXPECT_EQ(r.unitsOffDomain, 1u);
   ASSERT_EQ(r.units.size(), 2u);
   EXPECT_EQ(r.units[1].supportNeighbours, 1u); // the seabed
-  EXPECT_NE(app::packText(r).find("off the model       1 units"), std::string::npos) << app::packText(r);
+  EXPECT_NE(measure::packText(r).find("off the model       1 units"), std::string::npos) << measure::packText(r);
   // The unit 0.6 m (centroid) into the face: its samples 1 m deep, more than the guard allows.
-  state = app::posesOf(scene);
+  state = measure::posesOf(scene);
   state["c1"].position.z() -= 0.6 / std::sqrt(1.25) * 1.0;
   state["c1"].position.x() += 0.6 * 0.5 / std::sqrt(1.25);
   try {
-    (void)app::analysePack(scene, settings, &state);
+    (void)measure::analysePack(scene, settings, &state);
     FAIL() << "a unit deep inside the slope was analysed";
   } catch (const core::InputError& e) {
     const std::string what = e.what();
@@ -206,12 +206,12 @@ TEST(PackAnalysis, AUnitOffTheCrestEdgeIsOffTheModelAndAUnitInTheSlopeIsRefused)
 // reported as not available, with the reason, instead of a negative number.
 TEST(PackAnalysis, AFewUnitsHaveNoPorosity) {
   const io::Scene scene = cubesOnTheFace(3);
-  const app::PackReport r = app::analysePack(scene, app::AnalyseSettings{});
+  const measure::PackReport r = measure::analysePack(scene, measure::AnalyseSettings{});
   ASSERT_TRUE(r.thickness.has_value());
   // The hull: a triangle, sqrt(5) m along the face (c0 to c1) by 1.2 m across it (c2), so
   // A = sqrt(5) x 1.2 / 2 = 1.3416 m^2; t = 1 m, N V = 3 m^3: 1 - 3 / 1.3416 = -1.236.
   EXPECT_NEAR(r.packingHull.area, std::sqrt(5.0) * 1.2 / 2.0, 1e-4);
   EXPECT_TRUE(std::isnan(r.porosity));
   EXPECT_NE(r.porosityNote.find("-1.24 is no porosity"), std::string::npos) << r.porosityNote;
-  EXPECT_NE(app::packText(r).find("porosity n/a ("), std::string::npos) << app::packText(r);
+  EXPECT_NE(measure::packText(r).find("porosity n/a ("), std::string::npos) << measure::packText(r);
 }

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace armour::app {
+namespace armour::measure {
 
 /// A pose per body name (from final_state.csv or a scene).
 struct BodyPose {
@@ -117,4 +117,4 @@ void writePackReport(const PackReport& report, const std::filesystem::path& fold
 /// The pack summary as text lines.
 std::string packText(const PackReport& report);
 
-} // namespace armour::app
+} // namespace armour::measure

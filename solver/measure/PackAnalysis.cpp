@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "app/PackAnalysis.hpp"
+#include "measure/PackAnalysis.hpp"
 
 #include "analysis/UnderlayerSurface.hpp"
 #include "core/AtomicFile.hpp"
@@ -16,7 +16,7 @@
 #include <numbers>
 #include <sstream>
 
-namespace armour::app {
+namespace armour::measure {
 namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
@@ -421,4 +421,4 @@ void writePackReport(const PackReport& r, const std::filesystem::path& folder) {
   });
 }
 
-} // namespace armour::app
+} // namespace armour::measure
