@@ -351,8 +351,9 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
   std::error_code ec;
   fs::remove(m.run / "error.txt", ec);
   if (run.restart) std::cout << fmt::format("  continuing its storm run from {}\n", (m.run / "checkpoint.nc").string()) << std::flush;
+  measure::PoseMap after;
   try {
-    runScene(run);
+    after = runScene(run);
   } catch (const core::InputError& e) {
     // The scene was read before: what a restarted run refuses is its checkpoint (another scene).
     if (run.restart) throw RestartRefused(e.what());
@@ -365,7 +366,6 @@ std::vector<double> stormMember(const EnsembleOptions& o, const Member& m, int t
   }
   const io::Scene scene = io::readScene(placedScene);
   const measure::PoseMap before = measure::posesOf(scene);
-  const measure::PoseMap after = measure::readPoses(m.run / "final_state.csv");
   measure::AnalyseSettings settings;
   settings.unitPrefix = unitPrefix;
   settings.axis = o.axis;

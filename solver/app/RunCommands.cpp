@@ -114,6 +114,18 @@ void writeStateCsv(const fs::path& path, const io::Scene& scene, const simulatio
   });
 }
 
+/// The poses final_state.csv holds, as measure::readPoses reads them back (normalised quaternions).
+measure::PoseMap finalPoses(const io::Scene& scene, const simulation::BuiltScene& built) {
+  measure::PoseMap poses;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const simulation::BodyId b = built.bodyIndexOfSceneBody[i];
+    measure::BodyPose& p = poses[scene.bodies[i].name];
+    p.position = built.world->bodies().position(b);
+    p.orientation = built.world->naturalOrientation(b).normalized();
+  }
+  return poses;
+}
+
 void checkScene(const std::string& path, const std::vector<std::string>& sets) {
   const io::Scene scene = io::readScene(path, sets);
   simulation::BuiltScene built = simulation::buildWorld(scene);
@@ -539,7 +551,7 @@ void logRunEnd(const RunRequest& o, const io::Scene& scene, const simulation::Wo
 
 } // namespace
 
-void runScene(const RunRequest& o) {
+measure::PoseMap runScene(const RunRequest& o) {
   io::Scene scene = readRunScene(o);
   const fs::path checkpointPath = checkpointPathOf(scene);
   // What the run computes, to recognise its checkpoints: duration and output settings excluded.
@@ -598,6 +610,7 @@ void runScene(const RunRequest& o) {
   writeStateCsv(scene.output.folder / "final_state.csv", scene, built);
   logRunEnd(o, scene, world, outputs, domainWatch, tally, wall, restart.has_value(), log);
   log->flush();
+  return finalPoses(scene, built);
 }
 
 void addSetOption(CLI::App& command, std::vector<std::string>& sets) {

@@ -10,6 +10,7 @@
 /// state at the stop written beside the run log.
 
 #include "app/CommandContext.hpp"
+#include "measure/PackAnalysis.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -37,10 +38,12 @@ struct RunRequest {
 };
 
 /// Build the scene's world and run it to the end, writing the outputs and run.log into the
-/// output folder (docs/output-files.md). Throws core::InputError for bad input and
-/// CLI::RuntimeError(3) when the simulation stops (its state written beside the log), or (130)
-/// when stopped by SIGINT/SIGTERM after writing a checkpoint.
-void runScene(const RunRequest& request);
+/// output folder (docs/output-files.md). Returns the final pose of each of the scene's bodies,
+/// the values final_state.csv holds (its 17 digits read back to the same doubles), so a caller
+/// (`armour ensemble`) measures the run without reading the file back. Throws core::InputError
+/// for bad input and CLI::RuntimeError(3) when the simulation stops (its state written beside
+/// the log), or (130) when stopped by SIGINT/SIGTERM after writing a checkpoint.
+measure::PoseMap runScene(const RunRequest& request);
 
 /// The repeatable `--set KEY=VALUE` option of the commands that read a scene.
 void addSetOption(CLI::App& command, std::vector<std::string>& sets);
