@@ -178,8 +178,11 @@ TEST_P(BothSolvers, BlockOnInclineBelowFrictionAngleDoesNotCreep) {
 }
 
 TEST_P(BothSolvers, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAcceleration) {
-  // theta = 35 deg, mu = 0.4: a = g (sin theta - mu cos theta) = 2.413 m/s^2, within 2 % (issue 22),
-  // from the velocity gained between 0.5 and 1.5 s.
+  // theta = 35 deg, mu = 0.4: a = g (sin theta - mu cos theta) = 2.413 m/s^2, from the velocity
+  // gained between 0.5 and 1.5 s, after the friction springs' transient. A face sliding on a plane
+  // does not rock, so the motion is the analytic one for both solvers (measured: relative errors
+  // 7e-6 penalty, 1e-6 constraint). 1e-3 of a is the acceleration an error of 3e-4 in mu makes
+  // (da/dmu = -g cos theta): the friction law is checked to its fourth digit.
   const double theta = 35.0 * std::numbers::pi / 180.0;
   Slope s(GetParam(), theta, 0.4);
   s.world.advanceTo(0.5);
@@ -188,7 +191,7 @@ TEST_P(BothSolvers, BlockOnInclineAboveFrictionAngleSlidesWithCoulombAcceleratio
   const double v1 = s.world.bodies().velocity(s.block).dot(s.downhill);
   const double expected = kG * (std::sin(theta) - 0.4 * std::cos(theta));
   RecordProperty("acceleration_relative_error", std::to_string((v1 - v0) / expected - 1.0));
-  EXPECT_NEAR(v1 - v0, expected, 0.02 * expected) << solverName(GetParam());
+  EXPECT_NEAR(v1 - v0, expected, 1e-3 * expected) << solverName(GetParam());
 }
 
 TEST_P(BothSolvers, DropReboundsWithTheTargetRestitution) {
