@@ -272,6 +272,8 @@ std::string describeScene(const Scene& s) {
 
   line("sleep:");
   line(fmt::format("  enabled = {}", s.sleep.enabled));
+  // Printed only when not the default: the description is the scene's fingerprint in checkpoints.
+  if (s.sleep.scope != simulation::SleepScope::Island) line("  scope = neighbours");
   line(fmt::format("  linear_speed = {} m/s", s.sleep.linearSpeed));
   line(fmt::format("  angular_speed = {} rad/s", s.sleep.angularSpeed));
   line(fmt::format("  time = {} s", s.sleep.time));

@@ -644,6 +644,7 @@ void readRunSettings(const Block& top, Scene& scene) {
 
   const Block s(ctx, top.has("sleep") ? top.get("sleep") : YAML::Node(), tables::sleep());
   scene.sleep.enabled = s.flag("enabled", scene.sleep.enabled);
+  scene.sleep.scope = static_cast<simulation::SleepScope>(s.choice("scope", static_cast<std::size_t>(scene.sleep.scope)));
   scene.sleep.linearSpeed = s.number("linear_speed", scene.sleep.linearSpeed);
   scene.sleep.angularSpeed = s.number("angular_speed", scene.sleep.angularSpeed);
   scene.sleep.time = s.number("time", scene.sleep.time);

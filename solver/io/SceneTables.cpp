@@ -19,6 +19,7 @@ std::string showChoice(const KeyList& choices, std::size_t index) { return fmt::
 const KeyList kModels{"levelset", "fdem"};
 const KeyList kSolvers{"penalty", "constraint"};
 const KeyList kDashpots{"explicit", "implicit"};
+const KeyList kSleepScopes{"island", "neighbours"};
 
 } // namespace
 
@@ -266,6 +267,14 @@ const Table& sleep() {
     const simulation::SleepSettings d;
     return Table("sleep", {
       {.name = "enabled", .kind = KeyKind::Flag, .defaultText = show(d.enabled)},
+      {.name = "scope", .kind = KeyKind::Choice, .defaultText = showChoice(kSleepScopes, static_cast<std::size_t>(d.scope)),
+       .meaning =
+        R"md(which bodies must be at rest for a body to sleep. `island`: every body of its contact island )md"
+        R"md((Box2D's and Jolt's rule; one unit creeping anywhere in a pile keeps the whole pile awake). )md"
+        R"md(`neighbours`: the body and the bodies it touches; a resting body next to a moving one stays )md"
+        R"md(awake, one two contacts away may sleep and wakes as soon as a body it touches moves (ours; )md"
+        R"md(measured in [benchmarks.md](benchmarks.md), "Sleeping by neighbours"))md",
+       .choices = kSleepScopes},
       {.name = "linear_speed", .num = {"m/s", kNonNegative, "0.001"}, .defaultText = show(d.linearSpeed),
        .meaning = R"md(centroid speed below which a body may sleep)md"},
       {.name = "angular_speed", .num = {"rad/s", kNonNegative, "0.001"}, .defaultText = show(d.angularSpeed),

@@ -11,8 +11,20 @@ namespace armour::simulation {
 /// sleeping or static bodies are not examined, so a settled pack costs nothing until something
 /// moving touches it (seed 001: the "sleep" that keeps resting packs from chattering). Every
 /// default is ours.
+/// Which bodies must be at rest for a body to sleep.
+enum class SleepScope {
+  /// Every body of its contact island (Box2D's and Jolt's rule): one unit creeping anywhere in a
+  /// pile keeps the whole pile awake.
+  Island,
+  /// The body and the bodies it touches: a resting body next to a moving one stays awake, one two
+  /// contacts away may sleep, and wakes as soon as a body it touches moves (ours; measured in
+  /// docs/benchmarks.md, "Sleeping by neighbours").
+  Neighbours,
+};
+
 struct SleepSettings {
   bool enabled = true;
+  SleepScope scope = SleepScope::Island;
   double linearSpeed = 1.0e-3;  ///< centroid speed below which a body is at rest (unit: m/s)
   double angularSpeed = 1.0e-3; ///< angular speed below which a body is at rest (unit: rad/s)
   double time = 0.5;            ///< a whole contact island must rest this long to sleep (unit: s)

@@ -421,6 +421,8 @@ private:
   [[nodiscard]] double externalPower() const;
   // WorldSleep.cpp: contact islands, sleeping and waking.
   void updateSleep(double dt);
+  /// SleepScope::Neighbours: the awake bodies that have rested long enough and touch no restless body.
+  [[nodiscard]] std::vector<BodyId> restedWithNeighbours() const;
   /// A sleeping body woke: restart the energy guard's reference (WorldSleep.cpp says why).
   void energyWakeReset();
   // WorldEnergy.cpp: the energy guard rail.

@@ -74,6 +74,13 @@ void World::updateSleep(double dt) {
     }
     return b;
   };
+  // What wakes a sleeper it touches. Island: a body that has not rested long enough (so a woken
+  // body wakes its neighbours in turn, and the whole island wakes). Neighbours: a body that moved
+  // in this step; a body just woken is not moving, so waking does not spread through a resting
+  // pile, only motion does.
+  const auto wakesOthers = [&](BodyId b) {
+    return bodies_.isAwake(b) && (st.scope == SleepScope::Island ? restTime_[b] < st.time : restTime_[b] == 0.0);
+  };
   std::vector<BodyId> toWake;
   for (const auto& [key, h] : history_) {
     if ((key.second & kStaticBits) != 0 || h.empty()) {
@@ -86,10 +93,10 @@ void World::updateSleep(double dt) {
     }
     parent[find(a)] = find(b);
     // Something moving touches a sleeper: wake it (its neighbours follow as contact spreads).
-    if (ta == dynamics::MotionType::Sleeping && bodies_.isAwake(b) && restTime_[b] < st.time) {
+    if (ta == dynamics::MotionType::Sleeping && wakesOthers(b)) {
       toWake.push_back(a);
     }
-    if (tb == dynamics::MotionType::Sleeping && bodies_.isAwake(a) && restTime_[a] < st.time) {
+    if (tb == dynamics::MotionType::Sleeping && wakesOthers(a)) {
       toWake.push_back(b);
     }
   }
@@ -98,17 +105,21 @@ void World::updateSleep(double dt) {
     restTime_[b] = 0.0;
   }
   if (!toWake.empty()) energyWakeReset();
-  // An island sleeps when every awake member has rested long enough.
-  std::vector<char> islandRestless(n, 0);
-  for (BodyId b : bodies_.awakeBodies()) {
-    if (restTime_[b] < st.time) {
-      islandRestless[find(b)] = 1;
-    }
-  }
   std::vector<BodyId> toSleep;
-  for (BodyId b : bodies_.awakeBodies()) {
-    if (!islandRestless[find(b)]) {
-      toSleep.push_back(b);
+  if (st.scope == SleepScope::Neighbours) {
+    toSleep = restedWithNeighbours();
+  } else {
+    // An island sleeps when every awake member has rested long enough.
+    std::vector<char> islandRestless(n, 0);
+    for (BodyId b : bodies_.awakeBodies()) {
+      if (restTime_[b] < st.time) {
+        islandRestless[find(b)] = 1;
+      }
+    }
+    for (BodyId b : bodies_.awakeBodies()) {
+      if (!islandRestless[find(b)]) {
+        toSleep.push_back(b);
+      }
     }
   }
   for (BodyId b : toSleep) {
@@ -118,6 +129,30 @@ void World::updateSleep(double dt) {
       sleepLoad_[b] = externalForce_[b];
     }
   }
+}
+
+std::vector<BodyId> World::restedWithNeighbours() const {
+  // SleepScope::Neighbours: an awake body that has rested long enough sleeps unless a body it
+  // touches (not static, asleep or not) is restless. The rested neighbours of a moving body stay
+  // awake as its buffer; a sleeper touching one of them is not woken (they are at rest), and wakes
+  // when one of them moves (the wake rule above).
+  const SleepSettings& st = settings_.sleep;
+  std::vector<char> restless(bodies_.size(), 0);
+  for (BodyId b : bodies_.awakeBodies()) restless[b] = restTime_[b] < st.time ? 1 : 0;
+  std::vector<char> nextToRestless(bodies_.size(), 0);
+  for (const auto& [key, h] : history_) {
+    if ((key.second & kStaticBits) != 0 || h.empty()) continue;
+    const BodyId a = key.first, b = key.second;
+    if (bodies_.motionType(a) == dynamics::MotionType::Static || bodies_.motionType(b) == dynamics::MotionType::Static)
+      continue;
+    if (restless[b]) nextToRestless[a] = 1;
+    if (restless[a]) nextToRestless[b] = 1;
+  }
+  std::vector<BodyId> toSleep;
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (!restless[b] && !nextToRestless[b]) toSleep.push_back(b);
+  }
+  return toSleep;
 }
 
 } // namespace armour::simulation

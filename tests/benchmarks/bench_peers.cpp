@@ -6,7 +6,7 @@
 //   bench_peers [--scene cubes|corelocs] [--seconds 10] [--penalty-seconds S] [--penalty-cpu-limit C]
 //               [--solvers constraint,bullet-box,bullet-hull,bullet-compound,penalty]
 //               [--pieces 3|5|3,5] [--no-sleep] [--bullet-iterations 10] [--count N] [--seed 1]
-//               [--trace-unit N --trace-window FROM TO]
+//               [--trace-unit N --trace-window FROM TO] [--sleep-scope island|neighbours]
 //
 // The scene is bench_solver's pile with --placement drop (SolverBenchPile.cpp, buildPile): N units
 // of Dn = 1 m (concrete 2400 kg/m^3, friction 0.6, restitution 0.1) released at rest from a jittered
@@ -250,6 +250,10 @@ int main(int argc, char** argv) {
                  "stop the penalty solver at the whole simulated second after which the next would pass this "
                  "much thread CPU time (s); 0: no limit");
   app.add_option("--drift-window", driftWindow, "the drift is the largest displacement over this last window (s)");
+  std::string sleepScope = "island";
+  app.add_option("--sleep-scope", sleepScope, "armour solvers: island (a whole contact island rests) or neighbours "
+                                              "(a body and those it touches rest; scene key sleep.scope)")
+      ->check(CLI::IsMember({"island", "neighbours"}));
   UnitTrace trace;
   std::vector<double> traceWindow;
   app.add_option("--trace-unit", trace.unit, "armour solvers: print this unit's speed and its loaded contact points "
@@ -335,7 +339,9 @@ int main(int argc, char** argv) {
       if (solver == "penalty" || solver == "constraint") {
         bench::setBenchSolver(solver == "penalty" ? sim::ContactSolverKind::Penalty
                                                   : sim::ContactSolverKind::Constraint);
-        sim::World world(bench::baseSettings(o.sleep));
+        sim::WorldSettings ws = bench::baseSettings(o.sleep);
+        ws.sleep.scope = sleepScope == "neighbours" ? sim::SleepScope::Neighbours : sim::SleepScope::Island;
+        sim::World world(ws);
         const bench::PileScene p = bench::buildPile(world, o);
         Stepper s;
         s.bodies = world.bodies().size();
@@ -355,6 +361,7 @@ int main(int argc, char** argv) {
                                       solver, bench::si(world.timeStep()),
                                       solver == "constraint" ? fmt::format(", {} substeps", world.settings().constraint.substeps)
                                                              : " (auto: 0.2 x the stability limit)");
+        if (o.sleep) row.description += fmt::format("; sleep scope {}", sleepScope);
       } else {
         bench::setBenchSolver(sim::ContactSolverKind::Penalty);
         sim::World world(bench::baseSettings(o.sleep)); // the scene's bodies, never stepped

@@ -59,7 +59,7 @@ TEST(SceneSchema, TheTablesShowTheSettingsStructsDefaults) {
   EXPECT_CONTAINS(schemaTable("top"), "| `time_step_safety` | number in (0, 1] | - | 0.2 |");
   EXPECT_CONTAINS(schemaTable("top"), "| `gravity` | [x, y, z] | m/s^2 | [0, 0, -9.81] |");
   // Header, rule and one row per key.
-  EXPECT_EQ(std::count(s.begin(), s.end(), '\n'), 2 + 5);
+  EXPECT_EQ(std::count(s.begin(), s.end(), '\n'), 2 + 6);
   EXPECT_THROW((void)schemaTable("sleeep"), InputError);
 }
 
@@ -67,7 +67,7 @@ TEST(SceneSchema, TheReaderChecksKeysAndRangesFromTheSameTable) {
   // A key missing from the table is unknown to the reader; the table's range and unit word the error.
   EXPECT_CONTAINS(errorFrom(kBody + "sleep: {linear_sped: 0.01}\n"),
                   "sleep.linear_sped: unknown key (did you mean 'linear_speed'?); valid keys are: enabled, "
-                  "linear_speed, angular_speed, time, wake_load_fraction");
+                  "scope, linear_speed, angular_speed, time, wake_load_fraction");
   EXPECT_CONTAINS(errorFrom(kBody + "sleep: {linear_speed: -1}\n"), "sleep.linear_speed = -1: must be >= 0 (unit: m/s)");
   EXPECT_CONTAINS(errorFrom(kBody + "contact: {max_overlap: 2}\n"), "contact.max_overlap = 2: must be in (0, 1] (unit: Dn)");
   EXPECT_CONTAINS(errorFrom(kBody + "contact: {solver: constrained}\n"),
@@ -77,9 +77,10 @@ TEST(SceneSchema, TheReaderChecksKeysAndRangesFromTheSameTable) {
   EXPECT_CONTAINS(errorFrom(kBody + "time_step_safety: 0\n"), "time_step_safety = 0: must be in (0, 1] (unit: -)");
   EXPECT_CONTAINS(errorFrom("duration: 1\nmaterials:\n  rock: {density: -2650, friction: 0.6, restitution: 0.1}\n"),
                   "materials.rock.density = -2650: must be > 0 (unit: kg/m^3), e.g. 2400 for concrete, 2650 for rock");
-  const Scene scene = parseScene(kBody + "sleep: {time: 2}\nbody_damping: {linear: 0.9}\n",
+  const Scene scene = parseScene(kBody + "sleep: {time: 2, scope: neighbours}\nbody_damping: {linear: 0.9}\n",
                                  std::filesystem::current_path(), "test.yaml");
   EXPECT_EQ(scene.sleep.time, 2.0);
+  EXPECT_EQ(scene.sleep.scope, simulation::SleepScope::Neighbours);
   EXPECT_EQ(scene.sleep.linearSpeed, simulation::SleepSettings{}.linearSpeed);
   EXPECT_EQ(scene.bodyDamping.linear, 0.9);
 }
