@@ -54,7 +54,8 @@ SchemaDocUpdate updateSchemaTables(const std::string& document, const std::strin
   while (true) {
     // A marker starts a line (the same words inside a sentence are text about the markers).
     std::size_t begin = document.find(kBegin, at);
-    while (begin != std::string::npos && begin > 0 && document[begin - 1] != '\n') begin = document.find(kBegin, begin + 1);
+    while (begin != std::string::npos && begin > 0 && document[begin - 1] != '\n')
+      begin = document.find(kBegin, begin + 1);
     if (begin == std::string::npos) break;
     const std::size_t lineEnd = document.find('\n', begin);
     const std::size_t pathEnd = document.find_first_of(" \n", begin + kBegin.size());

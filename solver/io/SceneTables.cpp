@@ -267,7 +267,8 @@ const Table& sleep() {
     const simulation::SleepSettings d;
     return Table("sleep", {
       {.name = "enabled", .kind = KeyKind::Flag, .defaultText = show(d.enabled)},
-      {.name = "scope", .kind = KeyKind::Choice, .defaultText = showChoice(kSleepScopes, static_cast<std::size_t>(d.scope)),
+      {.name = "scope", .kind = KeyKind::Choice,
+       .defaultText = showChoice(kSleepScopes, static_cast<std::size_t>(d.scope)),
        .meaning =
         R"md(which bodies must be at rest for a body to sleep. `island`: every body of its contact island )md"
         R"md((Box2D's and Jolt's rule; one unit creeping anywhere in a pile keeps the whole pile awake). )md"

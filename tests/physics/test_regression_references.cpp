@@ -163,9 +163,10 @@ TEST_F(StormLoadReference, StormLoadsOnThreeUnits) {
   for (const double t : {0.0, 0.5, 1.3, 2.1}) {
     const Loads l = applyAt(stage, scene.world, t);
     for (BodyId b = 0; b < scene.world.bodies().size(); ++b) {
+      const std::string& name = scene.world.bodies().info(b).name;
       for (int c = 0; c < 3; ++c) {
-        v.emplace_back(fmt::format("t={} {} force {}", t, scene.world.bodies().info(b).name, "xyz"[c]), l.force[b][c]);
-        v.emplace_back(fmt::format("t={} {} moment {}", t, scene.world.bodies().info(b).name, "xyz"[c]), l.torque[b][c]);
+        v.emplace_back(fmt::format("t={} {} force {}", t, name, "xyz"[c]), l.force[b][c]);
+        v.emplace_back(fmt::format("t={} {} moment {}", t, name, "xyz"[c]), l.torque[b][c]);
       }
     }
   }
