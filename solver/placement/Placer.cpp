@@ -7,6 +7,8 @@
 #include "core/Log.hpp"
 #include "placement/Deposit.hpp"
 #include "placement/PlacementGrid.hpp"
+#include "placement/PlacementSupport.hpp"
+#include "placement/RockLayer.hpp"
 #include "simulation/Interpenetration.hpp"
 
 #include <fmt/format.h>
@@ -28,18 +30,15 @@ using simulation::BodyId;
 using simulation::BodySpec;
 using simulation::ShapeId;
 using simulation::World;
+using detail::addWorldBody;
+using detail::makeDeposit;
+using detail::resolveMaterial;
+using detail::sceneBody;
+using detail::slopeFrame;
+using detail::stream;
+using detail::uniform;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-/// A generator of independent random streams: stream k of seed s (SplitMix64 of both), so a
-/// unit's draws do not depend on how many draws the others took.
-std::mt19937_64 stream(std::uint64_t seed, std::uint64_t k) {
-  std::uint64_t z = seed * 0x9e3779b97f4a7c15ULL + (k + 1) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return std::mt19937_64(z ^ (z >> 31));
-}
-
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 /// The orientation of unit i (natural shape frame -> the frame of the settings: the world, or the
 /// slope face's), from its own stream.
@@ -67,15 +66,6 @@ std::size_t resolveShape(io::Scene& scene, const std::string& name) {
   return scene.shapes.size() - 1;
 }
 
-std::size_t resolveMaterial(const io::Scene& scene, const std::string& name, const std::string& key) {
-  const std::ptrdiff_t m = scene.findMaterial(name);
-  if (m < 0) {
-    std::string names;
-    for (const auto& mat : scene.materials) names += (names.empty() ? "" : ", ") + mat.name;
-    core::failInput(scene.sourceName, "{} = {}: no such material; the scene has {}", key, name, names);
-  }
-  return static_cast<std::size_t>(m);
-}
 
 /// The slope the grid lies on.
 const io::StaticSlope* findSlope(const io::Scene& scene) {
@@ -244,8 +234,6 @@ LoneSettle settleAlone(World& world, BodyId b, const SettleEachSettings& s, doub
   return out;
 }
 
-/// Slope frame of the rock deposit: x up the face, z out of it (a rotation about y by -alpha).
-Quat slopeFrame(double tanAlpha) { return Quat(Eigen::AngleAxisd(-std::atan(tanAlpha), Vec3::UnitY())); }
 
 /// Where `select: keyed` measures a candidate's top: along the slope normal, from the underlayer's
 /// top (the mean top of its surface stones, or the face without stones).
@@ -272,43 +260,6 @@ double keyedCost(const Deposit& deposit, const Placed& u, std::size_t firstUnitB
   return height + (onSupport ? 0.0 : os.offUnderlayerCost) + (onUnit ? 0.0 : os.unkeyedCost);
 }
 
-/// A Deposit over the statics of `built`, in the frame `toFrame` (world -> deposit frame).
-Deposit makeDeposit(const simulation::BuiltScene& built, const Quat& toFrame, double cell) {
-  const auto& d = built.domain;
-  // The plan bounds of the domain in the deposit frame (its corners, rotated).
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (int i = 0; i < 8; ++i) {
-    const Vec3 c((i & 1) ? d.xMax : d.xMin, (i & 2) ? d.yMax : d.yMin, (i & 4) ? d.depth : -d.depth);
-    lo = lo.cwiseMin(toFrame * c);
-    hi = hi.cwiseMax(toFrame * c);
-  }
-  Deposit deposit(lo.x(), hi.x(), lo.y(), hi.y(), cell);
-  for (const auto& p : built.planes) deposit.addPlane({toFrame * p.point, toFrame * p.normal});
-  for (const auto& piece : built.convexPieces) {
-    std::vector<Vec3> corners;
-    for (const Vec3& c : piece.corners) corners.push_back(toFrame * c);
-    deposit.addPiece(corners);
-  }
-  return deposit;
-}
-
-void addWorldBody(Deposit& deposit, const World& world, BodyId b, const Quat& toFrame) {
-  deposit.addBody(world.shape(world.bodyShape(b)), world.bodyScale(b), toFrame * world.bodies().orientation(b),
-                  toFrame * world.bodies().position(b));
-}
-
-io::Body sceneBody(const World& world, BodyId b, const std::string& name, std::size_t shape, std::size_t material,
-                   double volume, bool fixed) {
-  io::Body out;
-  out.name = name;
-  out.shape = shape;
-  out.material = material;
-  out.volume = volume;
-  out.position = world.bodies().position(b);
-  out.orientation = world.naturalOrientation(b).normalized();
-  out.fixed = fixed;
-  return out;
-}
 
 } // namespace
 
@@ -392,6 +343,7 @@ private:
   std::pair<Vec3, double> descentStart(const GridPoint& g) const;
   PlacementProgress progressNow() const;
   void placeUnit(int i);
+  /// One rock pass (RockLayer.hpp) on this placement's face, between its walls.
   void depositRocks(const RockSettings& rs, double s0, double s1,
                     const std::vector<std::pair<std::size_t, ShapeId>>& rockShapes, const std::string& key,
                     std::uint64_t salt);
@@ -527,92 +479,19 @@ void PlacementRun::layRocks() {
   result.summary.rocks = static_cast<int>(rockBodies.size());
 }
 
-/// One pass of rocks (the underlayer, or the toe berm on it): `rs.count` rocks from `shapes` on a
-/// jittered grid of drop points from s0 to s1 up the face (negative: offshore of the foot, on the
-/// toe) between the walls, each lowered along the face normal (the lowest of `rs.tries`
-/// orientations), slid and tilted into the holes, and frozen. `key` names the pass's block
-/// (placement.rocks or placement.toe_berm); `salt` keeps each pass's random streams apart. A restart lays none: the checkpoint's rocks are added after the passes.
 void PlacementRun::depositRocks(const RockSettings& rs, double s0, double s1,
                                 const std::vector<std::pair<std::size_t, ShapeId>>& rockShapes, const std::string& key,
                                 std::uint64_t salt) {
-  const std::string what = key == "rocks" ? "rock underlayer" : "toe berm";
-  const PlacementSettings& ps = input.placement;
-  io::Scene& scene = result.scene;
-  World& world = *result.built.world;
-  const double wallWidth = plan.wallWidth;
-  const std::size_t rockMaterial = resolveMaterial(scene, rs.material.empty() ? ps.material : rs.material,
-                                                   "placement." + key + ".material");
-  const Quat frame = slopeFrame(slope->tanAlpha), toFrame = frame.conjugate();
-  double rockRadius = 0.0;
-  for (const auto& [s, id] : rockShapes) rockRadius = std::max(rockRadius, world.shape(id).radius);
-  const double maxScale = rs.dn50 * std::pow(rs.grading, 0.25);
-  Deposit rockDeposit = makeDeposit(result.built, toFrame, 2.0 * std::max(rockRadius * maxScale, 0.5 * dn));
-  for (BodyId b = 0; b < world.bodies().size(); ++b) addWorldBody(rockDeposit, world, b, toFrame);
-  const Vec3 originFrame = toFrame * Vec3(slope->origin.x(), 0.0, slope->origin.y());
-  const double x0 = originFrame.x() + s0, x1 = originFrame.x() + s1;
-  const double y0 = std::isfinite(wallLo) ? wallLo : gridSettings.yStart;
-  const double y1 = std::isfinite(wallHi) ? wallHi : y0 + (gridSettings.width > 0 ? gridSettings.width : wallWidth);
-  // A jittered grid of drop points (random sequential drops cluster and leave holes).
-  const double area = (x1 - x0) * (y1 - y0);
-  const double spacing = std::sqrt(area / std::max(1, rs.count));
-  const int cols = std::max(1, static_cast<int>(std::round((y1 - y0) / spacing)));
-  const int rowsR = std::max(1, (rs.count + cols - 1) / cols);
-  const double dxr = (x1 - x0) / rowsR, dyr = (y1 - y0) / cols;
-  std::size_t laid = 0;
-  for (int i = 0; i < (resume != nullptr ? 0 : rs.count); ++i) {
-    std::mt19937_64 rng = stream(ps.seed ^ salt, static_cast<std::uint64_t>(i));
-    const int layerPass = i / (rowsR * cols);
-    const int k = i % (rowsR * cols);
-    const double px = x0 + (k / cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dxr;
-    const double py = y0 + (k % cols + 0.5 + 0.6 * (uniform(rng) - 0.5) + 0.5 * layerPass) * dyr;
-    const auto& [sceneShape, shapeId] = rockShapes[rng() % rockShapes.size()];
-    const simulation::ShapeModel& model = world.shape(shapeId);
-    // Log-uniform nominal diameter between Dn50 / sqrt(g) and Dn50 sqrt(g): Dn85 / Dn15 = g^0.7.
-    const double rockDn = rs.dn50 * std::pow(rs.grading, uniform(rng) - 0.5);
-    const double scale = rockDn / std::cbrt(model.unitMass.volume);
-    Placed best;
-    Quat bestNatural = Quat::Identity();
-    bool found = false;
-    for (int t = 0; t < std::max(1, rs.tries) * 4 && !(found && t >= rs.tries); ++t) {
-      const Quat natural = uniformRotation(rng);
-      Placed u;
-      u.shape = &model;
-      u.scale = scale;
-      u.R = (toFrame * natural * model.naturalToBody.conjugate()).toRotationMatrix();
-      u.radius = model.radius * scale;
-      u.x = Vec3(px, py, 0.0);
-      if (!rockDeposit.lower(u, 0.05 * rockDn, rs.clearance * rockDn)) continue;
-      if (!found || u.x.z() < best.x.z()) {
-        best = u;
-        bestNatural = natural;
-        found = true;
-      }
-    }
-    if (!found) continue; // nothing fits here (a wall corner): the next drop point
-    const Mat3 before = best.R;
-    rockDeposit.slideDown(best, 6, 0.25 * rockDn, 15.0 * kDeg, 0.05 * rockDn, rs.clearance * rockDn, rng);
-    // The orientation change of the slide, applied to the natural frame (in world axes).
-    const Quat tiltFrame(Mat3(best.R * before.transpose()));
-    const Quat natural = (frame * tiltFrame * toFrame * bestNatural).normalized();
-    rockDeposit.add(best);
-    BodySpec spec;
-    spec.name = fmt::format("rock_{:04d}", rockBodies.size());
-    spec.shape = shapeId;
-    spec.scale = scale;
-    spec.material = static_cast<simulation::MaterialId>(rockMaterial);
-    spec.fixed = true;
-    spec.position = frame * best.x;
-    spec.orientation = natural;
-    const BodyId b = world.addBody(spec);
-    rockBodies.push_back(b);
-    ++laid;
-    added.push_back({spec.name, sceneShape, scale, rockMaterial, rockDn * rockDn * rockDn, true});
-    if (laid % 500 == 0) log->info("{}: {} of {} rocks", what, laid, rs.count);
-    scene.bodies.push_back(sceneBody(world, b, spec.name, sceneShape, rockMaterial, rockDn * rockDn * rockDn, true));
-  }
-  if (resume == nullptr)
-    log->info("{}: {} rocks (Dn50 {:.3g} m, grading {:.3g}) on {:.1f} x {:.1f} m", what, laid, rs.dn50, rs.grading,
-              x1 - x0, y1 - y0);
+  RockSite site;
+  site.slope = slope;
+  site.y0 = std::isfinite(wallLo) ? wallLo : gridSettings.yStart;
+  site.y1 = std::isfinite(wallHi) ? wallHi : site.y0 + (gridSettings.width > 0 ? gridSettings.width : plan.wallWidth);
+  site.unitDn = dn;
+  site.seed = input.placement.seed;
+  site.unitMaterial = input.placement.material;
+  site.resuming = resume != nullptr;
+  placement::depositRocks(result.built, result.scene, site, {&rs, s0, s1, key, salt}, rockShapes, rockBodies, added,
+                          *log);
 }
 
 Deposit PlacementRun::rebuildDeposit() const {
