@@ -30,13 +30,7 @@ using simulation::BodyId;
 using simulation::BodySpec;
 using simulation::ShapeId;
 using simulation::World;
-using detail::addWorldBody;
-using detail::makeDeposit;
-using detail::resolveMaterial;
-using detail::sceneBody;
-using detail::slopeFrame;
-using detail::stream;
-using detail::uniform;
+using namespace detail; // PlacementSupport.hpp
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 

@@ -17,13 +17,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 } // namespace
 
-using detail::addWorldBody;
-using detail::makeDeposit;
-using detail::resolveMaterial;
-using detail::sceneBody;
-using detail::slopeFrame;
-using detail::stream;
-using detail::uniform;
+using namespace detail; // PlacementSupport.hpp
 using simulation::BodyId;
 using simulation::BodySpec;
 using simulation::World;
