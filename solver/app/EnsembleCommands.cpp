@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/EnsembleCommands.hpp"
 
+#include "core/TextFile.hpp"
 #include "measure/PackAnalysis.hpp"
 #include "app/PlacementCheckpoint.hpp"
 #include "app/RunCommands.hpp"
@@ -493,11 +494,7 @@ void ensemble(const EnsembleOptions& o) {
   const int threads = o.threads > 0 ? o.threads : std::max(1, hardware / ranks.ranksOnNode());
   omp_set_num_threads(threads);
 
-  std::ifstream in(o.file, std::ios::binary);
-  if (!in) core::failInput(o.file, "cannot open the placement file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = core::readTextFile(o.file, "the placement file");
   const fs::path source = fs::absolute(o.file);
   const fs::path folder = o.output.empty() ? source.parent_path() / (source.stem().string() + "-ensemble")
                                            : fs::absolute(o.output);

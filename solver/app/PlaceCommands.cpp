@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/PlaceCommands.hpp"
 
+#include "core/TextFile.hpp"
 #include "app/PlacementCheckpoint.hpp"
 #include "app/RunCommands.hpp"
 #include "app/StopSignals.hpp"
@@ -51,10 +52,7 @@ std::string restartCommand(const PlaceOptions& o) {
 void placeScene(const PlaceOptions& o) {
   if (o.threads < 0) core::failInput("--threads", "{}: give a positive number of threads, or 0 for OpenMP's default", o.threads);
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  std::ifstream in(o.file, std::ios::binary);
-  if (!in) core::failInput(o.file, "cannot open the placement file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = core::readTextFile(o.file, "the placement file");
   const io::Scene scene = io::readScene(o.file, o.sets);
   if (!scene.placement.enabled)
     core::failInput(o.file, "no `placement:` block; `armour place` needs one (docs/placement.md has examples), or use "
@@ -81,7 +79,7 @@ void placeScene(const PlaceOptions& o) {
   };
   // Checkpoints: the World's state plus the placement's own progress, for the scene as resolved
   // (its identity) and the placement file's text as run (with the --set changes).
-  const std::string effectiveText = io::applyOverridesToText(text.str(), o.sets, o.file);
+  const std::string effectiveText = io::applyOverridesToText(text, o.sets, o.file);
   PlacementCheckpoint checkpoint(scene, effectiveText, folder / "place-checkpoint.nc");
   std::optional<placement::PlacementProgress> resume;
   if (o.restart) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "app/SchemaCommands.hpp"
 
+#include "core/TextFile.hpp"
 #include "core/AtomicFile.hpp"
 #include "core/Error.hpp"
 #include "io/SceneSchema.hpp"
@@ -24,18 +25,10 @@ struct SchemaRequest {
   std::string updateDoc;
 };
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) core::failInput(path, "cannot open the document; give the path of docs/scene-file.md");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 void runSchema(const SchemaRequest& r) {
   if (!r.checkDoc.empty() || !r.updateDoc.empty()) {
     const std::string path = r.checkDoc.empty() ? r.updateDoc : r.checkDoc;
-    const io::SchemaDocUpdate u = io::updateSchemaTables(readText(path), path);
+    const io::SchemaDocUpdate u = io::updateSchemaTables(core::readTextFile(path, "the document (docs/scene-file.md)"), path);
     if (!u.missing.empty())
       core::failInput(path, "no generated table for {}; add a line '<!-- schema: BLOCK -->' and a line "
                             "'<!-- end schema -->' where each belongs, then run armour schema --update-doc {}",

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/DeformableScene.hpp"
 
+#include "core/TextFile.hpp"
 #include "io/ReadOrientation.hpp"
 #include "io/YamlSchema.hpp"
 
@@ -179,17 +180,14 @@ geometry::TriangleMesh librarySurface(const DeformablePart& part) {
 }
 
 DeformableScene readDeformableScene(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw core::InputError(fmt::format("{}: cannot open the deformable scene; check the path", file.string()));
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = core::readTextFile(file, "the deformable scene");
   const std::string source = file.string();
   DeformableScene scene;
   scene.file = file;
   Context ctx{source, std::filesystem::absolute(file).parent_path(), 1, nullptr};
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw core::InputError(fmt::format("{}:{}:{}: YAML syntax error: {} (check the indentation, colons and brackets "
                                        "on this line or the one before)",

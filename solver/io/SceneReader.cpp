@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/SceneReader.hpp"
 
+#include "core/TextFile.hpp"
 #include "io/PlacementReader.hpp"
 #include "io/SceneOverrides.hpp"
 #include "io/SceneTables.hpp"
@@ -833,14 +834,9 @@ Scene parseScene(const std::string& yaml, const std::filesystem::path& baseDir, 
 }
 
 Scene readScene(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw core::InputError(fmt::format("{}: cannot open the scene file (looked for {})", path.string(),
-                                       std::filesystem::absolute(path).lexically_normal().string()));
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = core::readTextFile(path, "the scene file");
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  return parseScene(text.str(), folder, path.string(), overrides);
+  return parseScene(text, folder, path.string(), overrides);
 }
 
 } // namespace armour::io
