@@ -421,8 +421,11 @@ private:
   [[nodiscard]] double externalPower() const;
   // WorldSleep.cpp: contact islands, sleeping and waking.
   void updateSleep(double dt);
-  /// SleepScope::Neighbours: the awake bodies that have rested long enough and touch no restless body.
-  [[nodiscard]] std::vector<BodyId> restedWithNeighbours() const;
+  /// The awake bodies to put to sleep, from the pairs of movable bodies in contact:
+  /// SleepScope::Island, whole islands rested long enough (union-find over the pairs);
+  [[nodiscard]] std::vector<BodyId> restedIslands(const std::vector<std::pair<BodyId, BodyId>>& touching) const;
+  /// SleepScope::Neighbours, bodies rested long enough that touch no restless body.
+  [[nodiscard]] std::vector<BodyId> restedWithNeighbours(const std::vector<std::pair<BodyId, BodyId>>& touching) const;
   /// A sleeping body woke: restart the energy guard's reference (WorldSleep.cpp says why).
   void energyWakeReset();
   // WorldEnergy.cpp: the energy guard rail.

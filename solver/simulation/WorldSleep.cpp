@@ -62,18 +62,16 @@ void World::updateSleep(double dt) {
       }
     }
   }
-  // Contact islands over non-static bodies (union-find on the pairs in contact).
-  std::vector<BodyId> parent(n);
-  for (BodyId b = 0; b < n; ++b) {
-    parent[b] = b;
+  // The pairs of movable bodies in contact: who touches whom, for waking and for the sleep rule.
+  std::vector<std::pair<BodyId, BodyId>> touching;
+  touching.reserve(history_.size());
+  for (const auto& [key, h] : history_) {
+    if ((key.second & kStaticBits) != 0 || h.empty()) continue;
+    const BodyId a = key.first, b = key.second;
+    if (bodies_.motionType(a) == dynamics::MotionType::Static || bodies_.motionType(b) == dynamics::MotionType::Static)
+      continue;
+    touching.emplace_back(a, b);
   }
-  const auto find = [&](BodyId b) {
-    while (parent[b] != b) {
-      parent[b] = parent[parent[b]];
-      b = parent[b];
-    }
-    return b;
-  };
   // What wakes a sleeper it touches. Island: a body that has not rested long enough (so a woken
   // body wakes its neighbours in turn, and the whole island wakes). Neighbours: a body that moved
   // in this step; a body just woken is not moving, so waking does not spread through a resting
@@ -82,46 +80,17 @@ void World::updateSleep(double dt) {
     return bodies_.isAwake(b) && (st.scope == SleepScope::Island ? restTime_[b] < st.time : restTime_[b] == 0.0);
   };
   std::vector<BodyId> toWake;
-  for (const auto& [key, h] : history_) {
-    if ((key.second & kStaticBits) != 0 || h.empty()) {
-      continue;
-    }
-    const BodyId a = key.first, b = key.second;
-    const auto ta = bodies_.motionType(a), tb = bodies_.motionType(b);
-    if (ta == dynamics::MotionType::Static || tb == dynamics::MotionType::Static) {
-      continue;
-    }
-    parent[find(a)] = find(b);
-    // Something moving touches a sleeper: wake it (its neighbours follow as contact spreads).
-    if (ta == dynamics::MotionType::Sleeping && wakesOthers(b)) {
-      toWake.push_back(a);
-    }
-    if (tb == dynamics::MotionType::Sleeping && wakesOthers(a)) {
-      toWake.push_back(b);
-    }
+  for (const auto& [a, b] : touching) {
+    if (bodies_.motionType(a) == dynamics::MotionType::Sleeping && wakesOthers(b)) toWake.push_back(a);
+    if (bodies_.motionType(b) == dynamics::MotionType::Sleeping && wakesOthers(a)) toWake.push_back(b);
   }
   for (BodyId b : toWake) {
     bodies_.wake(b);
     restTime_[b] = 0.0;
   }
   if (!toWake.empty()) energyWakeReset();
-  std::vector<BodyId> toSleep;
-  if (st.scope == SleepScope::Neighbours) {
-    toSleep = restedWithNeighbours();
-  } else {
-    // An island sleeps when every awake member has rested long enough.
-    std::vector<char> islandRestless(n, 0);
-    for (BodyId b : bodies_.awakeBodies()) {
-      if (restTime_[b] < st.time) {
-        islandRestless[find(b)] = 1;
-      }
-    }
-    for (BodyId b : bodies_.awakeBodies()) {
-      if (!islandRestless[find(b)]) {
-        toSleep.push_back(b);
-      }
-    }
-  }
+  const std::vector<BodyId> toSleep =
+      st.scope == SleepScope::Neighbours ? restedWithNeighbours(touching) : restedIslands(touching);
   for (BodyId b : toSleep) {
     bodies_.sleep(b);
     if (!externalForce_.empty()) {
@@ -131,20 +100,41 @@ void World::updateSleep(double dt) {
   }
 }
 
-std::vector<BodyId> World::restedWithNeighbours() const {
+std::vector<BodyId> World::restedIslands(const std::vector<std::pair<BodyId, BodyId>>& touching) const {
+  // SleepScope::Island: contact islands by union-find over the touching pairs; an island sleeps
+  // when every awake member has rested long enough.
+  const auto n = static_cast<BodyId>(bodies_.size());
+  std::vector<BodyId> parent(n);
+  for (BodyId b = 0; b < n; ++b) parent[b] = b;
+  const auto find = [&](BodyId b) {
+    while (parent[b] != b) {
+      parent[b] = parent[parent[b]];
+      b = parent[b];
+    }
+    return b;
+  };
+  for (const auto& [a, b] : touching) parent[find(a)] = find(b);
+  std::vector<char> islandRestless(n, 0);
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (restTime_[b] < settings_.sleep.time) islandRestless[find(b)] = 1;
+  }
+  std::vector<BodyId> toSleep;
+  for (BodyId b : bodies_.awakeBodies()) {
+    if (!islandRestless[find(b)]) toSleep.push_back(b);
+  }
+  return toSleep;
+}
+
+std::vector<BodyId> World::restedWithNeighbours(const std::vector<std::pair<BodyId, BodyId>>& touching) const {
   // SleepScope::Neighbours: an awake body that has rested long enough sleeps unless a body it
-  // touches (not static, asleep or not) is restless. The rested neighbours of a moving body stay
-  // awake as its buffer; a sleeper touching one of them is not woken (they are at rest), and wakes
-  // when one of them moves (the wake rule above).
-  const SleepSettings& st = settings_.sleep;
+  // touches (asleep or not) is restless. The rested neighbours of a moving body stay awake as its
+  // buffer; a sleeper touching one of them is not woken (they are at rest), and wakes when one of
+  // them moves (the wake rule in updateSleep).
+  const double time = settings_.sleep.time;
   std::vector<char> restless(bodies_.size(), 0);
-  for (BodyId b : bodies_.awakeBodies()) restless[b] = restTime_[b] < st.time ? 1 : 0;
+  for (BodyId b : bodies_.awakeBodies()) restless[b] = restTime_[b] < time ? 1 : 0;
   std::vector<char> nextToRestless(bodies_.size(), 0);
-  for (const auto& [key, h] : history_) {
-    if ((key.second & kStaticBits) != 0 || h.empty()) continue;
-    const BodyId a = key.first, b = key.second;
-    if (bodies_.motionType(a) == dynamics::MotionType::Static || bodies_.motionType(b) == dynamics::MotionType::Static)
-      continue;
+  for (const auto& [a, b] : touching) {
     if (restless[b]) nextToRestless[a] = 1;
     if (restless[a]) nextToRestless[b] = 1;
   }
