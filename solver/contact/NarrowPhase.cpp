@@ -101,6 +101,30 @@ bool apart(const ContactShape& a, const ContactPose& pa, const ContactShape& b, 
 /// than the point and the distance to the grid box is 1-Lipschitz. With 0.01 % for the float nodes.
 constexpr double kValueLipschitz = (1.0 + 1.7320508075688772) * 1.0001;
 
+/// `value` as a float no larger than it (a listed sample's value, kept for the skip test).
+float roundedDown(double value) {
+  const auto f = static_cast<float>(value);
+  return static_cast<double>(f) > value ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+/// The probe's unscaled body frame -> the target's unscaled frame: L = rotation p + translation.
+struct RelativePose {
+  Mat3 rotation;
+  Vec3 translation;
+};
+
+RelativePose relativePose(const ContactPose& probe, const ContactPose& target) {
+  return {target.rotation.transpose() * probe.rotation * (probe.scale / target.scale),
+          target.rotation.transpose() * (probe.position - target.position) / target.scale};
+}
+
+/// How far any sample of a probe of radius `radius` (unscaled) can have moved in the target frame
+/// between two relative poses: the change of the translation plus the change of the rotation
+/// (Frobenius norm, above the spectral one) times the radius.
+double motionBound(const Mat3& rotation, const Vec3& translation, const RelativePose& now, double radius) {
+  return (now.translation - translation).norm() + (now.rotation - rotation).norm() * radius;
+}
+
 /// One direction of a body pair: the probe's samples in the target's level set. With a list, the
 /// list is used when it covers this call, and made anew (a full search with margin + slack) when not.
 void probeSamples(const ContactShape& ps, const ContactPose& probe, const ContactShape& ts, const ContactPose& target,
@@ -116,8 +140,9 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
   const LevelSet& ls = *ts.levelSet;
   const double m = margin / st; // the margin in the target's unscaled frame
   // Probe frame (unscaled) -> target frame (unscaled): L = Rrel p + trel.
-  const Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
-  const Vec3 trel = Rt.transpose() * (xp - xt) / st;
+  const RelativePose now = relativePose(probe, target);
+  const Mat3& Rrel = now.rotation;
+  const Vec3& trel = now.translation;
   // phi < m needs L within the target's mesh bounds grown by sqrt(3) h + m (LevelSet::mayPenetrate).
   const double h = ls.cellSize();
   const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * h + m);
@@ -151,15 +176,34 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     }
   };
   if (list != nullptr && list->reach >= 0.0 && list->probe == ps.samples && list->target == ts.levelSet) {
-    // How far any sample can have moved in the target frame since the list was made: the change of
-    // the translation plus the change of the rotation (Frobenius norm, above the spectral one) times
-    // the probe's radius; the list covers this call while its reach holds the margin plus what the
-    // value can have changed over that distance.
-    const double moved = (trel - list->translation).norm() + (Rrel - list->rotation).norm() * ps.radius;
-    if (m + kValueLipschitz * moved + 1e-6 * h <= list->reach) {
+    // How far any sample can have moved in the target frame since the list was made; the list
+    // covers this call while its reach holds the margin plus what the value can have changed over
+    // that distance.
+    const double moved = motionBound(list->rotation, list->translation, now, ps.radius);
+    const double needed = m + kValueLipschitz * moved + 1e-6 * h;
+    if (needed <= list->reach) {
       ++list->reuses;
-      for (const std::uint32_t i : list->samples) {
-        consider(i, Rrel * samples.positions()[i] + trel);
+      list->listed += static_cast<std::uint32_t>(list->samples.size());
+      // A sample whose value at the search was at least `needed` still lies at or above m: its value
+      // can have fallen by at most kValueLipschitz * moved since. The same points, bit for bit.
+      // Else, a sample that has moved less than (its last value - m) / kValueLipschitz since its
+      // last look-up is still at or above m. Exact too; a look-up refreshes the sample's record.
+      const double fine = m + 1e-6 * h;
+      for (std::size_t k = 0; k < list->samples.size(); ++k) {
+        if (list->values[k] >= needed) continue;
+        const std::uint32_t i = list->samples[k];
+        const Vec3 L = Rrel * samples.positions()[i] + trel;
+        const double bound = list->lastValues[k] - kValueLipschitz * (L - list->lastPoints[k]).norm();
+        if (bound >= fine) continue;
+        if (!inBox(L, targetLo, targetHi)) continue; // value >= m outside the grown box
+        ++list->lookups;
+        LevelSet::Lookup at;
+        const double value = ls.value(L, at);
+        list->lastValues[k] = value;
+        list->lastPoints[k] = L;
+        if (value < m) {
+          emit(i, at);
+        }
       }
       return;
     }
@@ -174,6 +218,9 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     list->translation = trel;
     list->reach = reach;
     list->samples.clear();
+    list->values.clear();
+    list->lastValues.clear();
+    list->lastPoints.clear();
   }
   const Vec3 reachLo = ls.meshBounds().min - Vec3::Constant(std::sqrt(3.0) * h + reach);
   const Vec3 reachHi = ls.meshBounds().max + Vec3::Constant(std::sqrt(3.0) * h + reach);
@@ -209,6 +256,9 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
       const double value = ls.value(L, at);
       if (value < reach) {
         list->samples.push_back(i);
+        list->values.push_back(roundedDown(value));
+        list->lastValues.push_back(value);
+        list->lastPoints.push_back(L);
       }
       if (value < m && inBox(L, targetLo, targetHi)) {
         emit(i, at);

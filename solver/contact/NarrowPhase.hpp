@@ -95,8 +95,18 @@ struct NearSampleList {
   Vec3 translation = Vec3::Zero();       ///< (target frame, unscaled: m / st)
   double reach = -1.0;                   ///< margin + slack of the search (target frame, unscaled); < 0: none
   std::vector<std::uint32_t> samples;    ///< in the order a full search visits them
+  /// Each listed sample's level-set value at the search, rounded down (target frame, unscaled): a
+  /// sample whose value then lay above the margin by more than the motion since can have moved,
+  /// is skipped without a look-up (the same bound that lets the list serve the call).
+  std::vector<float> values;
+  /// Each listed sample's value at its last look-up and where it was then (target frame, unscaled):
+  /// a sample that has not moved from there by (value - margin) / Lipschitz is skipped too.
+  std::vector<double> lastValues;
+  std::vector<Vec3> lastPoints;
   std::uint32_t searches = 0;            ///< full searches made (counters: reset by the caller)
   std::uint32_t reuses = 0;              ///< calls served from the list
+  std::uint32_t listed = 0;              ///< listed samples in those calls
+  std::uint32_t lookups = 0;             ///< of them, those looked up (the rest skipped)
 };
 
 /// A body pair's two near-sample lists: A's samples in B, B's samples in A.

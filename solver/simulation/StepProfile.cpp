@@ -40,6 +40,11 @@ std::string StepProfile::table(std::uint64_t steps) const {
                        100.0 * seconds_[k] / all, seconds_[k] * perStep);
   }
   out += fmt::format("{:<14} {:>10.3f} {:>6.1f}% {:>12.4f}\n", "total", total(), 100.0, total() * perStep);
+  const double n = steps > 0 ? static_cast<double>(steps) : 1.0;
+  out += fmt::format("per step: {:.0f} awake bodies, {:.0f} candidate pairs, {:.0f} contact points, {:.0f} full "
+                     "sample searches, {:.0f} listed samples of which {:.0f} looked up\n",
+                     counts_.awake / n, counts_.pairs / n, counts_.points / n, counts_.searches / n,
+                     counts_.listed / n, counts_.lookups / n);
   return out;
 }
 

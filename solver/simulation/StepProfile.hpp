@@ -42,12 +42,34 @@ public:
   }
   [[nodiscard]] double seconds(Stage s) const { return seconds_[static_cast<std::size_t>(s)]; }
   [[nodiscard]] double total() const;
-  void reset() { seconds_.fill(0.0); }
-  /// A table, one stage per line: seconds, share of the total, milliseconds per step.
+  /// What the narrow phase did in one step, summed over the run for the table's last line.
+  struct Counts {
+    double awake = 0.0;          ///< bodies integrated
+    double pairs = 0.0;          ///< candidate pairs
+    double points = 0.0;         ///< engaged sample points
+    double searches = 0.0;       ///< body-pair directions searched in full
+    double listed = 0.0;         ///< listed samples in the others (near-sample lists)
+    double lookups = 0.0;        ///< of them, those looked up
+  };
+  void count(const Counts& step) {
+    counts_.awake += step.awake;
+    counts_.pairs += step.pairs;
+    counts_.points += step.points;
+    counts_.searches += step.searches;
+    counts_.listed += step.listed;
+    counts_.lookups += step.lookups;
+  }
+  void reset() {
+    seconds_.fill(0.0);
+    counts_ = {};
+  }
+  /// A table, one stage per line: seconds, share of the total, milliseconds per step; then the
+  /// counts per step.
   [[nodiscard]] std::string table(std::uint64_t steps) const;
 
 private:
   std::array<double, static_cast<std::size_t>(Stage::Count)> seconds_{};
+  Counts counts_;
 };
 
 } // namespace armour::simulation

@@ -305,6 +305,9 @@ void World::step() {
 
 void World::finishStep(double dt, StepProfile::Clock::time_point clock) {
   stats_.awakeBodies = bodies_.awakeBodies().size();
+  profile_.count({static_cast<double>(stats_.awakeBodies), static_cast<double>(stats_.candidatePairs),
+                  static_cast<double>(stats_.contactPoints), static_cast<double>(stats_.sampleSearches),
+                  static_cast<double>(stats_.sampleListListed), static_cast<double>(stats_.sampleListLookups)});
   applyBodyDamping(dt);
   for (BodyId b : bodies_.awakeBodies()) {
     if (!bodies_.position(b).allFinite() || !bodies_.velocity(b).allFinite() ||

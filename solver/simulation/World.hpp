@@ -211,6 +211,8 @@ struct StepStatistics {
   std::size_t awakeBodies = 0;      ///< dynamic bodies integrated this step
   std::size_t sampleSearches = 0;   ///< body-pair directions searched in full (near-sample lists made)
   std::size_t sampleListReuses = 0; ///< body-pair directions served from their near-sample list
+  std::size_t sampleListListed = 0;  ///< listed samples in those directions
+  std::size_t sampleListLookups = 0; ///< of them, those looked up (the others skipped by their value)
   double maxOverlap = 0.0;          ///< deepest penetration (unit: m)
 };
 

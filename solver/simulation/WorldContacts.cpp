@@ -311,7 +311,7 @@ std::vector<contact::PairSampleCache*> World::sampleListsFor(const std::vector<c
     CachedSamples* walked = sampleWalk_.find(id);
     CachedSamples& entry = walked != nullptr ? *walked : sampleLists_[id];
     entry.step = step;
-    for (contact::NearSampleList& direction : entry.cache.directions) direction.searches = direction.reuses = 0;
+    for (contact::NearSampleList& direction : entry.cache.directions) direction.searches = direction.reuses = direction.listed = direction.lookups = 0;
     lists[w] = &entry.cache;
     next.keys.push_back(id);
     next.entries.push_back(&entry);
@@ -329,6 +329,8 @@ void World::countSampleLists(const std::vector<contact::PairSampleCache*>& lists
     for (const contact::NearSampleList& direction : list->directions) {
       stats_.sampleSearches += direction.searches;
       stats_.sampleListReuses += direction.reuses;
+      stats_.sampleListListed += direction.listed;
+      stats_.sampleListLookups += direction.lookups;
     }
   }
 }

@@ -29,6 +29,7 @@ Window runWindow(World& world, int threads, std::uint64_t steps, double untilTim
     w.pointSum += static_cast<double>(s.contactPoints);
     w.listReuseSum += static_cast<double>(s.sampleListReuses);
     w.listSearchSum += static_cast<double>(s.sampleSearches);
+    w.listLookupSum += static_cast<double>(s.sampleListLookups);
     w.maxOverlap = std::max(w.maxOverlap, s.maxOverlap);
   }
   w.wall = wallNow() - wall0;

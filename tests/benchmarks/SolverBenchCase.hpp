@@ -33,6 +33,7 @@ struct Window {
   double pointSum = 0.0;   ///< sum over steps of engaged contact points
   double listReuseSum = 0.0;  ///< sum over steps of body-pair directions served by near-sample lists
   double listSearchSum = 0.0; ///< sum over steps of body-pair directions searched in full for a list
+  double listLookupSum = 0.0; ///< sum over steps of listed samples looked up (the rest skipped by value)
   double maxOverlap = 0.0; ///< m
   WorldState end;
 

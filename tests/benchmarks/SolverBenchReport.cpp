@@ -277,9 +277,9 @@ void printLayerTable(const LayerOptions& o, const CaseResult& r) {
       r.deterministic ? "yes" : "NO", r.load);
   const double directions = w.listReuseSum + w.listSearchSum;
   fmt::print("\nNear-sample lists (slack {} Dn): {:.1f} % of the body-pair directions past the pair cull were "
-             "served from their list, {:.0f} full searches per step.\n",
+             "served from their list, {:.0f} full searches and {:.0f} listed samples looked up per step.\n",
              r.sampleListSlack, directions > 0.0 ? 100.0 * w.listReuseSum / directions : 0.0,
-             w.perStep(w.listSearchSum));
+             w.perStep(w.listSearchSum), w.perStep(w.listLookupSum));
   fmt::print("\n- {}:{}\n\nSolidity_R's 7.7 counts its 3436 rocks as bodies (3678 x 3600 s / (24 h x 20 threads)); "
              "here the rocks are fixed and cost only through their pairs with units, so the fair per-body "
              "comparison is the unit column against {:.2f}, and the plainest one is core-seconds per simulated "

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <memory>
 #include <random>
@@ -80,6 +81,7 @@ void walk(const std::string& nameA, const std::string& nameB, double scaleB) {
   Quat qb(Eigen::AngleAxisd(1.1, Vec3(-1, 0.5, 2).normalized()));
   PairSampleCache cache;
   std::size_t points = 0;
+  std::size_t offered = 0; // listed samples in the calls the lists served
   for (int step = 0; step < 600; ++step) {
     const Vec3 pull = -0.004 * (xb.norm() - 0.8) * xb.normalized();
     xb += 0.02 * Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0) * (step % 50 < 40 ? 0.1 : 1.0) + pull;
@@ -88,8 +90,16 @@ void walk(const std::string& nameA, const std::string& nameB, double scaleB) {
     const double margin = step % 7 < 4 ? 0.0 : 0.05;
     std::vector<ContactPoint> full, listed;
     const double deepFull = armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, margin, full);
+    std::array<std::size_t, 2> sizeBefore{}, reusesBefore{};
+    for (int d = 0; d < 2; ++d) {
+      sizeBefore[d] = cache.directions[d].samples.size();
+      reusesBefore[d] = cache.directions[d].reuses;
+    }
     const double deepListed =
         armour::contact::samplesInLevelSets(A.view, pa, B.view, pb, margin, listed, &cache, 0.05);
+    for (int d = 0; d < 2; ++d) {
+      if (cache.directions[d].reuses > reusesBefore[d]) offered += sizeBefore[d];
+    }
     ASSERT_EQ(deepFull, deepListed) << "step " << step;
     expectSamePoints(full, listed, step);
     points += full.size();
@@ -98,6 +108,10 @@ void walk(const std::string& nameA, const std::string& nameB, double scaleB) {
   EXPECT_GT(points, 600u);
   EXPECT_GT(reuses(cache), 200u);
   EXPECT_GT(searches(cache), 20u);
+  // And the skip by value served too: some listed samples were looked up, not all of them.
+  const std::size_t lookups = cache.directions[0].lookups + cache.directions[1].lookups;
+  EXPECT_GT(lookups, 0u);
+  EXPECT_LT(lookups, offered);
 }
 
 TEST(NearSampleLists, CoreLocOnCoreLocFindsTheFullSearchsPointsBitForBit) { walk("coreloc", "coreloc", 1.0); }
