@@ -179,6 +179,8 @@ TEST(PlacementReader, ErrorsNameTheKeyAndTheFix) {
   refuses(orient("select: interlocked, stacked_cost: -1"), "placement.orientation.stacked_cost");
   refuses(orient("select: interlocked, offsets: -2"), "placement.orientation.offsets");
   refuses(orient("select: interlocked, drift_cst: 1"), "did you mean 'drift_cost'");
+  refuses(orient("select: interlocked, settle_candidates: 4"), "add settle_each: {}");
+  refuses(orient("select: interlocked, settle_candidates: 0"), "placement.orientation.settle_candidates");
   refuses(orient("select: keyed, layer_thickness: 0"), "placement.orientation.layer_thickness");
   refuses(orient("select: keyed, off_underlayer_cost: -1"), "placement.orientation.off_underlayer_cost");
   refuses(s + "  settle_each: {damping: -1}\n", "placement.settle_each.damping");
