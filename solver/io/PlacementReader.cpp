@@ -25,7 +25,9 @@ const KeyList kPlacementKeys{"shape", "material", "volume", "dn", "name_prefix",
 const KeyList kPlacementGridKeys{"file", "rows", "units_per_row", "dx", "dy", "packing_density", "first_row", "y_start",
                         "width", "stagger", "jitter", "layers", "layer_shift"};
 const KeyList kPlacementOrientationKeys{"mode", "frame", "euler_deg", "max_angle_deg", "tries", "select",
-                                        "off_underlayer_cost", "unkeyed_cost", "layer_thickness"};
+                                        "off_underlayer_cost", "unkeyed_cost", "layer_thickness", "offsets",
+                                        "offset_radius", "centroid_weight", "key_reward", "envelope_reward",
+                                        "stacked_cost", "drift_cost", "settle_candidates"};
 const KeyList kCraneKeys{"speed", "rest_speed", "min_time", "max_time"};
 const KeyList kSettleKeys{"rest_speed", "min_time", "max_time"};
 const KeyList kSettleEachKeys{"damping", "rest_speed", "rest_time", "max_time", "max_drift", "hold_at_max_drift"};
@@ -146,14 +148,31 @@ void readPlacement(const schema::Block& top, Scene& scene) {
   }
   os.maxAngleDeg = o.number("max_angle_deg", {"deg", Range{0.0, 180.0, false, false}, "20 (seed 000)"}, os.maxAngleDeg);
   os.tries = static_cast<int>(o.integer("tries", 1, "orientations tried per unit, the lowest kept", 1));
-  os.select = static_cast<placement::OrientationSelect>(o.choice("select", {"lowest", "keyed"}, 0));
+  os.select = static_cast<placement::OrientationSelect>(o.choice("select", {"lowest", "keyed", "interlocked"}, 0));
   os.offUnderlayerCost = o.number("off_underlayer_cost", {"Dn", kNonNegative, "1"}, os.offUnderlayerCost);
   os.unkeyedCost = o.number("unkeyed_cost", {"Dn", kNonNegative, "0.25"}, os.unkeyedCost);
   os.layerThickness = o.number("layer_thickness", {"Dn", kPositive, "1.52 (Core-Loc, CLI design table)"}, os.layerThickness);
+  os.offsets = static_cast<int>(o.integer("offsets", 0, "shifted positions tried per attitude besides the grid point", static_cast<std::uint64_t>(os.offsets)));
+  os.offsetRadius = o.number("offset_radius", {"Dn", kNonNegative, "0.35"}, os.offsetRadius);
+  os.centroidWeight = o.number("centroid_weight", {"-", kNonNegative, "1"}, os.centroidWeight);
+  os.keyReward = o.number("key_reward", {"Dn", kNonNegative, "0.15"}, os.keyReward);
+  os.envelopeReward = o.number("envelope_reward", {"Dn", kNonNegative, "1"}, os.envelopeReward);
+  os.stackedCost = o.number("stacked_cost", {"Dn", kNonNegative, "2"}, os.stackedCost);
+  os.driftCost = o.number("drift_cost", {"-", kNonNegative, "0.25"}, os.driftCost);
+  os.settleCandidates = static_cast<int>(o.integer("settle_candidates", 1, "candidates settled alone per unit",
+                                                   static_cast<std::uint64_t>(os.settleCandidates)));
+  if (os.settleCandidates > 1 && !p.has("settle_each"))
+    o.refuse("settle_candidates", "the candidates are settled by settle_each; add settle_each: {} or remove it");
   if (os.select == placement::OrientationSelect::Lowest) {
-    o.refuse("layer_thickness", "it is the target of select: keyed; add select: keyed or remove it");
-    o.refuse("off_underlayer_cost", "it weighs the candidates of select: keyed; add select: keyed or remove it");
+    o.refuse("layer_thickness", "it is the target of select: keyed or interlocked; add one of them or remove it");
+    o.refuse("off_underlayer_cost", "it weighs the candidates of select: keyed or interlocked; add one of them or remove it");
+  }
+  if (os.select != placement::OrientationSelect::Keyed)
     o.refuse("unkeyed_cost", "it weighs the candidates of select: keyed; add select: keyed or remove it");
+  if (os.select != placement::OrientationSelect::Interlocked) {
+    for (const char* key : {"offsets", "offset_radius", "centroid_weight", "key_reward", "envelope_reward",
+                            "stacked_cost", "drift_cost", "settle_candidates"})
+      o.refuse(key, "it belongs to select: interlocked; add select: interlocked or remove it");
   }
   if (os.mode == placement::OrientationMode::Random) {
     o.refuse("euler_deg", "mode: random draws every orientation; remove euler_deg or use mode: perturbed");

@@ -194,6 +194,22 @@ std::vector<std::size_t> Deposit::touching(const Placed& u, double clearance) co
   return out;
 }
 
+std::vector<std::size_t> Deposit::near(const Placed& u, double gap) const {
+  std::vector<std::size_t> out;
+  const int cx = col(u.x.x()), cy = row(u.x.y());
+  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + gap) / cell_));
+  for (int j = std::max(0, cy - reach); j <= std::min(ny_ - 1, cy + reach); ++j) {
+    for (int i = std::max(0, cx - reach); i <= std::min(nx_ - 1, cx + reach); ++i) {
+      for (const std::size_t k : columns_[static_cast<std::size_t>(j * nx_ + i)]) {
+        const double r = u.radius + placed_[k].radius + gap;
+        if ((u.x - placed_[k].x).squaredNorm() < r * r) out.push_back(k);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 bool Deposit::lower(Placed& u, double step, double clearance, double startZ) const {
   if (!clearWalls(u, clearance)) return false;
   const double floorZ = staticFloor(u, clearance);

@@ -99,6 +99,10 @@ public:
   }
 
   [[nodiscard]] std::size_t bodyCount() const { return placed_.size(); }
+  /// Placed body k (in the order added).
+  [[nodiscard]] const Placed& body(std::size_t k) const { return placed_[k]; }
+  /// The placed bodies (indices, ascending) whose bounding spheres come within `gap` (m) of u's.
+  [[nodiscard]] std::vector<std::size_t> near(const Placed& u, double gap) const;
 
   static constexpr double kAbove = std::numeric_limits<double>::infinity(); ///< "start above everything"
 

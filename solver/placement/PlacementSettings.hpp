@@ -58,6 +58,14 @@ enum class OrientationSelect {
   /// rule broken at a cost (offUnderlayerCost, unkeyedCost). Issue 24: a crane operator keys each
   /// unit into the row below, on the underlayer, and keeps the layer thin.
   Keyed,
+  /// Issue 24, session 28: a crane operator keying the unit into the gap of the row below. Every
+  /// unit is lowered in `tries` attitudes, each at its grid point and at `offsets` small shifts
+  /// around it along the face (within offsetRadius), and the least cost wins: a low top and
+  /// centroid above the underlayer, contacts with the units below (keyed: two or more), members
+  /// inside the envelopes (convex hulls) of the units below (interlocked), with penalties for a
+  /// candidate off the underlayer, stacked on another unit, or shifted from its grid point
+  /// (docs/theory.md section 15, "Interlocked").
+  Interlocked,
 };
 
 struct OrientationSettings {
@@ -70,16 +78,29 @@ struct OrientationSettings {
   double maxAngleDeg = 20.0;        ///< perturbation bound (unit: deg); seed 000: +-20 deg about the vertical
   int tries = 1;                    ///< orientations tried per unit, the best by `select` kept (unit: -)
   OrientationSelect select = OrientationSelect::Lowest;
-  /// With `keyed`: the cost of a candidate that touches no underlayer stone (supports, the slope,
+  /// With `keyed` or `interlocked`: the cost of a candidate that touches no underlayer stone (supports, the slope,
   /// the toe), in Dn of extra height of its top (unit: Dn). Ours: a unit off the underlayer is as
   /// bad as one standing this much higher.
   double offUnderlayerCost = 1.0;
   /// With `keyed`: the cost of a candidate that touches no unit placed before it (it does not key
   /// into the row below or its neighbours), in Dn (unit: Dn). Ours.
   double unkeyedCost = 0.25;
-  /// With `keyed`: the layer's design thickness k_t, from the underlayer's top to the units' tops
+  /// With `keyed` or `interlocked`: the layer's design thickness k_t, from the underlayer's top to the units' tops
   /// (unit: Dn); candidates are judged by how far their top lies from it. 0: the lowest top wins.
   double layerThickness = 0.0;
+  // `select: interlocked` (theory.md 15). All weights are ours (session 28), in Dn of cost.
+  int offsets = 8;                  ///< shifted positions tried per attitude besides the grid point (unit: -)
+  double offsetRadius = 0.35;       ///< the shifts are uniform in a disc of this radius along the face (unit: Dn)
+  double centroidWeight = 1.0;      ///< weight of the centroid's height above the underlayer (unit: -)
+  double keyReward = 0.15;          ///< reward per unit placed before that the candidate touches, up to two (unit: Dn)
+  double envelopeReward = 1.0;      ///< reward for the share of its surface samples inside the hulls of the units near it (unit: Dn)
+  double stackedCost = 2.0;         ///< cost of a stacked candidate: no support touched, centroid > 1 Dn above the underlayer (unit: Dn)
+  double driftCost = 0.25;          ///< cost per Dn of shift from the grid point, along the face (unit: -)
+  /// With `interlocked` and `settle_each`: the best this many candidates (each nested) are each
+  /// settled alone from the same state and judged again where they rest; the best at rest is kept
+  /// (a crane operator lifting a unit that did not key in and trying the next). 1: the best at
+  /// first touch is settled, as with the other rules (unit: -).
+  int settleCandidates = 1;
 };
 
 struct CraneSettings {

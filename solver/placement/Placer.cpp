@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "core/Log.hpp"
 #include "placement/Deposit.hpp"
+#include "placement/Interlock.hpp"
 #include "placement/PlacementGrid.hpp"
 #include "placement/PlacementSupport.hpp"
 #include "placement/RockLayer.hpp"
@@ -229,6 +230,13 @@ LoneSettle settleAlone(World& world, BodyId b, const SettleEachSettings& s, doub
 }
 
 
+/// A lowered unit and its cost by the orientation's `select` (lowest: its centroid's height).
+struct Candidate {
+  Placed u;
+  Quat natural = Quat::Identity(); ///< natural shape frame -> world
+  double cost = 0.0;
+};
+
 /// Where `select: keyed` measures a candidate's top: along the slope normal, from the underlayer's
 /// top (the mean top of its surface stones, or the face without stones).
 struct LayerBase {
@@ -337,6 +345,8 @@ private:
   std::pair<Vec3, double> descentStart(const GridPoint& g) const;
   PlacementProgress progressNow() const;
   void placeUnit(int i);
+  std::vector<Candidate> chooseCandidates(const GridPoint& g, std::mt19937_64& rng);
+  std::size_t trySettledCandidates(BodyId b, const std::vector<Candidate>& candidates, const GridPoint& g);
   /// One rock pass (RockLayer.hpp) on this placement's face, between its walls.
   void depositRocks(const RockSettings& rs, double s0, double s1,
                     const std::vector<std::pair<std::size_t, ShapeId>>& rockShapes, const std::string& key,
@@ -591,9 +601,9 @@ void PlacementRun::prepareUnits() {
     result.summary.settleCappedUnits = resume->summary.settleCappedUnits;
     result.summary.drifted = resume->summary.drifted;
   }
-  // select: keyed measures tops from the underlayer's: the mean top of the rocks' surface stones
+  // select: keyed and interlocked measure tops from the underlayer's: the mean top of the rocks' surface stones
   // (here, after a restart has restored the rocks' poses).
-  if (ps.orientation.select == OrientationSelect::Keyed) {
+  if (ps.orientation.select != OrientationSelect::Lowest) {
     const Vec3 origin = slope != nullptr ? Vec3(slope->origin.x(), 0.0, slope->origin.y()) : Vec3::Zero();
     const analysis::SlopeFrame frame = analysis::SlopeFrame::fromTanAlpha(slope != nullptr ? slope->tanAlpha : 0.0, origin);
     std::vector<analysis::PosedMesh> rocks;
@@ -612,6 +622,128 @@ void PlacementRun::lowerUnits() {
   for (int i = resume != nullptr ? resume->unitsDone : 0; i < total; ++i) placeUnit(i);
 }
 
+/// The best lowered candidate of a unit at grid point g by the orientation's `select`, nested
+/// when `nest:` is on; with `interlocked`, the best `settle_candidates` of them, best first, each
+/// nested. Empty if none fits. Draws from the unit's own stream.
+std::vector<Candidate> PlacementRun::chooseCandidates(const GridPoint& g, std::mt19937_64& rng) {
+  const PlacementSettings& ps = input.placement;
+  const OrientationSettings& os = ps.orientation;
+  const simulation::ShapeModel& unitModel = result.built.world->shape(unitShapeId);
+  Deposit& deposit = *deposit_;
+  const bool keyed = os.select == OrientationSelect::Keyed;
+  const bool interlocked = os.select == OrientationSelect::Interlocked;
+  const auto [start, startZ] = descentStart(g);
+  std::optional<InterlockJudge> judge;
+  if (interlocked)
+    judge.emplace(deposit, unitModel, firstUnitBody, clearance, dn, os, layerBase.normal, layerBase.offset);
+  // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
+  // natural frame too (world axes: the deposit is not rotated for the units).
+  // Keyed and interlocked: the slide keeps the moves that lower the rule's cost, not the centroid.
+  std::function<double(const Placed&)> cost;
+  if (keyed)
+    cost = [&](const Placed& u) { return keyedCost(deposit, u, firstUnitBody, clearance, dn, os, layerBase); };
+  if (interlocked) cost = [&](const Placed& u) { return judge->score(u, start).cost; };
+  const auto nestUnit = [&](Placed& u, Quat& natural) {
+    const Mat3 before = u.R;
+    deposit.slideDown(u, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
+                      ps.nest.maxDrift * dn, ps.nest.shift * dn, cost, step / dn);
+    natural = (unitFrame * Quat(Mat3(u.R * before.transpose())) * toUnitFrame * natural).normalized();
+  };
+  const auto unitAt = [&](const Quat& natural, const Vec3& x) {
+    Placed u;
+    u.shape = &unitModel;
+    u.scale = unitScale;
+    u.R = (toUnitFrame * natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
+    u.radius = unitModel.radius * unitScale;
+    u.x = x;
+    return u;
+  };
+  const auto draw = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  const std::size_t keep = interlocked ? static_cast<std::size_t>(std::max(1, os.settleCandidates)) : 1;
+  std::vector<Candidate> kept; // the best `keep` so far, best first (ties: the earlier)
+  const auto consider = [&](const Placed& u, const Quat& natural, double c) {
+    if (kept.size() == keep && c >= kept.back().cost) return;
+    auto at = std::upper_bound(kept.begin(), kept.end(), c, [](double v, const Candidate& k) { return v < k.cost; });
+    kept.insert(at, Candidate{u, natural, c});
+    if (kept.size() > keep) kept.pop_back();
+  };
+  // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
+  const Quat frame = os.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
+  for (int t = 0; t < std::max(1, os.tries) * 4 && !(!kept.empty() && t >= os.tries); ++t) {
+    Quat natural = (frame * unitOrientation(os, rng)).normalized();
+    if (interlocked) {
+      // The grid point, then `offsets` shifts uniform in a disc along the face (the deposit's
+      // x-y plane: normal to the lowering), each lowered from above to its first touch.
+      for (int k = 0; k <= os.offsets; ++k) {
+        const double r = k == 0 ? 0.0 : os.offsetRadius * dn * std::sqrt(draw());
+        const double a = 2.0 * std::numbers::pi * draw();
+        Placed u = unitAt(natural, start + Vec3(r * std::cos(a), r * std::sin(a), 0.0));
+        if (deposit.lower(u, step, clearance, startZ)) consider(u, natural, cost(u));
+      }
+      continue;
+    }
+    Placed u = unitAt(natural, start);
+    if (!deposit.lower(u, step, clearance, startZ)) continue;
+    // Keyed: each candidate is nested before it is judged, as the operator judges a unit where
+    // it settles into the hole, not where it first touched.
+    if (keyed && ps.nest.enabled) nestUnit(u, natural);
+    consider(u, natural, keyed ? cost(u) : u.x.z());
+  }
+  // Lowest and interlocked: the chosen ones are worked into their holes (interlocked by its cost).
+  if (ps.nest.enabled && !keyed) {
+    for (Candidate& c : kept) {
+      nestUnit(c.u, c.natural);
+      if (interlocked) c.cost = cost(c.u);
+    }
+    std::stable_sort(kept.begin(), kept.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+  }
+  if (!kept.empty() && interlocked) {
+    const InterlockScore sc = judge->score(kept.front().u, start);
+    log->debug("  interlocked: cost {:.3f}, top {:.3f} Dn, centroid {:.3f} Dn, {} units touched, {}, envelope {:.3f}",
+               sc.cost, sc.top, sc.centroid, sc.unitsTouched, sc.onSupport ? "on the underlayer" : "off it",
+               sc.envelopeShare);
+  }
+  return kept;
+}
+
+/// `settle_candidates`: each candidate (best first) is added as body b's pose to the state
+/// captured with the first, settled alone, and judged where it rests; the best at rest is then
+/// settled again from the same state (the same steps: the same rest) and kept. Returns its index.
+std::size_t PlacementRun::trySettledCandidates(BodyId b, const std::vector<Candidate>& candidates, const GridPoint& g) {
+  World& world = *result.built.world;
+  const PlacementSettings& ps = input.placement;
+  const simulation::WorldState first = world.captureState();
+  const Quat firstBody = world.bodies().orientation(b);
+  const auto start = [&](std::size_t k) {
+    simulation::WorldState s = first;
+    // Body orientation of candidate k: its natural one turned as the first's natural one is.
+    s.bodies[b].orientation = (candidates[k].natural * candidates[0].natural.conjugate() * firstBody).normalized();
+    s.bodies[b].position = unitFrame * candidates[k].u.x;
+    world.restoreState(s);
+    world.invalidateBoxes();
+  };
+  const InterlockJudge judge(*deposit_, world.shape(unitShapeId), firstUnitBody, clearance, dn, ps.orientation,
+                             layerBase.normal, layerBase.offset);
+  const Vec3 gridPoint = descentStart(g).first;
+  std::size_t best = 0;
+  double bestCost = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    start(k);
+    const LoneSettle lone = settleAlone(world, b, ps.settleEach, dn);
+    Placed u = candidates[k].u;
+    u.x = toUnitFrame * world.bodies().position(b);
+    u.R = (toUnitFrame * world.bodies().orientation(b)).toRotationMatrix();
+    const double c = judge.score(u, gridPoint).cost + (lone.rested ? 0.0 : ps.orientation.stackedCost);
+    log->debug("  candidate {}: cost {:.3f} at first touch, {:.3f} at rest", k, candidates[k].cost, c);
+    if (c < bestCost) {
+      bestCost = c;
+      best = k;
+    }
+  }
+  start(best);
+  return best;
+}
+
 /// Unit i: lowered at its grid point in the best of its trial orientations, nested, then settled
 /// as the method says; a safe point after it.
 void PlacementRun::placeUnit(int i) {
@@ -619,57 +751,17 @@ void PlacementRun::placeUnit(int i) {
   const io::Scene& scene = result.scene;
   World& world = *result.built.world;
   const std::vector<GridPoint>& grid = plan.points;
-  const simulation::ShapeModel& unitModel = world.shape(unitShapeId);
   Deposit& deposit = *deposit_;
   const GridPoint& g = grid[static_cast<std::size_t>(i)];
   std::mt19937_64 rng = stream(ps.seed, static_cast<std::uint64_t>(i));
   const std::string name = fmt::format("{}_{:04d}", ps.namePrefix, i);
-  const bool keyed = ps.orientation.select == OrientationSelect::Keyed;
-  // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
-  // natural frame too (world axes: the deposit is not rotated for the units).
-  // Keyed: the slide keeps the moves that lower the keyed cost, not the centroid.
-  const std::function<double(const Placed&)> cost =
-      keyed ? std::function<double(const Placed&)>(
-                  [&](const Placed& u) { return keyedCost(deposit, u, firstUnitBody, clearance, dn, ps.orientation, layerBase); })
-            : std::function<double(const Placed&)>();
-  const auto nestUnit = [&](Placed& u, Quat& natural) {
-    const Mat3 before = u.R;
-    deposit.slideDown(u, ps.nest.moves, ps.nest.shift * dn, ps.nest.tiltDeg * kDeg, step, clearance, rng,
-                      ps.nest.maxDrift * dn, ps.nest.shift * dn, cost, step / dn);
-    natural = (unitFrame * Quat(Mat3(u.R * before.transpose())) * toUnitFrame * natural).normalized();
-  };
-  Placed best;
-  Quat bestNatural = Quat::Identity();
-  double bestCost = std::numeric_limits<double>::infinity();
-  bool found = false;
-  for (int t = 0; t < std::max(1, ps.orientation.tries) * 4 && !(found && t >= ps.orientation.tries); ++t) {
-    // In the slope frame, z is the face's outward normal: a rotation about y by -alpha takes it there.
-    const Quat frame = ps.orientation.slopeFrame && slope != nullptr ? slopeFrame(slope->tanAlpha) : Quat::Identity();
-    Quat natural = (frame * unitOrientation(ps.orientation, rng)).normalized();
-    Placed u;
-    u.shape = &unitModel;
-    u.scale = unitScale;
-    u.R = (toUnitFrame * natural * unitModel.naturalToBody.conjugate()).toRotationMatrix();
-    u.radius = unitModel.radius * unitScale;
-    const auto [start, startZ] = descentStart(g);
-    u.x = start;
-    if (!deposit.lower(u, step, clearance, startZ)) continue;
-    // Keyed: each candidate is nested before it is judged, as the operator judges a unit where
-    // it settles into the hole, not where it first touched.
-    if (keyed && ps.nest.enabled) nestUnit(u, natural);
-    const double c = keyed ? cost(u) : u.x.z();
-    if (!found || c < bestCost) {
-      best = u;
-      bestNatural = natural;
-      bestCost = c;
-      found = true;
-    }
-  }
-  if (found && ps.nest.enabled && !keyed) nestUnit(best, bestNatural);
-  if (!found)
+  const std::vector<Candidate> candidates = chooseCandidates(g, rng);
+  if (candidates.empty())
     core::failInput(scene.sourceName, "{}: grid point {} ({:.3f}, {:.3f}) m: the unit fits nowhere on this vertical "
                                       "(between the walls, or blocked where it starts); move the point or the walls",
                     name, i, g.plan.x(), g.plan.y());
+  const Placed& best = candidates.front().u;
+  const Quat& bestNatural = candidates.front().natural;
   BodySpec spec;
   spec.name = name;
   spec.shape = unitShapeId;
@@ -688,6 +780,7 @@ void PlacementRun::placeUnit(int i) {
     // lowered onto it as it lies.
     if (ps.method == Method::Crane) spec.velocity = unitFrame * Vec3(0.0, 0.0, -ps.crane.speed);
     rec.body = world.addBody(spec);
+    if (candidates.size() > 1) rec.touchPoint = unitFrame * candidates[trySettledCandidates(rec.body, candidates, g)].u.x;
     const LoneSettle lone = settleAlone(world, rec.body, ps.settleEach, dn);
     world.bodies().setMotionType(rec.body, dynamics::MotionType::Static);
     frozen.push_back(rec.body);
