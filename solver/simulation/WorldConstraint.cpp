@@ -108,7 +108,9 @@ void World::collideConstraint(std::vector<PairManifold>& manifolds) {
       reused[w] = 1;
       continue;
     }
-    std::vector<contact::ContactPoint> points;
+    // One buffer per thread, kept from pair to pair and step to step (no allocation per pair).
+    thread_local std::vector<contact::ContactPoint> points;
+    points.clear();
     if ((m.key.second & kStaticBits) != 0) {
       const bool isPlane = (m.key.second & kPlaneBit) != 0;
       const detail::StaticTarget target =

@@ -362,7 +362,9 @@ void World::computeForces(double dt, double stateTime) {
     const BodyId a = pw.key.first;
     const bool plane = (pw.key.second & kStaticBits) != 0; // any static geometry: plane or convex piece
     const History* previous = findPairHistory(pw.key);
-    std::vector<contact::ContactPoint> engaged;
+    // One buffer per thread, kept from pair to pair and step to step (no allocation per pair).
+    thread_local std::vector<contact::ContactPoint> engaged;
+    engaged.clear();
     const Vec3& xA = bodies_.position(a);
     double lengthScale = bodyDn(a);
     contact::ContactParameters params;
