@@ -107,24 +107,6 @@ float roundedDown(double value) {
   return static_cast<double>(f) > value ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
 
-/// The probe's unscaled body frame -> the target's unscaled frame: L = rotation p + translation.
-struct RelativePose {
-  Mat3 rotation;
-  Vec3 translation;
-};
-
-RelativePose relativePose(const ContactPose& probe, const ContactPose& target) {
-  return {target.rotation.transpose() * probe.rotation * (probe.scale / target.scale),
-          target.rotation.transpose() * (probe.position - target.position) / target.scale};
-}
-
-/// How far any sample of a probe of radius `radius` (unscaled) can have moved in the target frame
-/// between two relative poses: the change of the translation plus the change of the rotation
-/// (Frobenius norm, above the spectral one) times the radius.
-double motionBound(const Mat3& rotation, const Vec3& translation, const RelativePose& now, double radius) {
-  return (now.translation - translation).norm() + (now.rotation - rotation).norm() * radius;
-}
-
 /// One direction of a body pair: the probe's samples in the target's level set. With a list, the
 /// list is used when it covers this call, and made anew (a full search with margin + slack) when not.
 void probeSamples(const ContactShape& ps, const ContactPose& probe, const ContactShape& ts, const ContactPose& target,
@@ -140,9 +122,8 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
   const LevelSet& ls = *ts.levelSet;
   const double m = margin / st; // the margin in the target's unscaled frame
   // Probe frame (unscaled) -> target frame (unscaled): L = Rrel p + trel.
-  const RelativePose now = relativePose(probe, target);
-  const Mat3& Rrel = now.rotation;
-  const Vec3& trel = now.translation;
+  const Mat3 Rrel = Rt.transpose() * Rp * (sp / st);
+  const Vec3 trel = Rt.transpose() * (xp - xt) / st;
   // phi < m needs L within the target's mesh bounds grown by sqrt(3) h + m (LevelSet::mayPenetrate).
   const double h = ls.cellSize();
   const Vec3 grow = Vec3::Constant(std::sqrt(3.0) * h + m);
@@ -176,10 +157,11 @@ void probeSamples(const ContactShape& ps, const ContactPose& probe, const Contac
     }
   };
   if (list != nullptr && list->reach >= 0.0 && list->probe == ps.samples && list->target == ts.levelSet) {
-    // How far any sample can have moved in the target frame since the list was made; the list
-    // covers this call while its reach holds the margin plus what the value can have changed over
-    // that distance.
-    const double moved = motionBound(list->rotation, list->translation, now, ps.radius);
+    // How far any sample can have moved in the target frame since the list was made: the change of
+    // the translation plus the change of the rotation (Frobenius norm, above the spectral one) times
+    // the probe's radius; the list covers this call while its reach holds the margin plus what the
+    // value can have changed over that distance.
+    const double moved = (trel - list->translation).norm() + (Rrel - list->rotation).norm() * ps.radius;
     const double needed = m + kValueLipschitz * moved + 1e-6 * h;
     if (needed <= list->reach) {
       ++list->reuses;

@@ -166,46 +166,40 @@ double Deposit::staticFloor(const Placed& u, double clearance) const {
   return floorZ;
 }
 
-bool Deposit::touchesBodies(const Placed& u, double clearance) const {
+template <class F> bool Deposit::anyNear(const Placed& u, double gap, F&& f) const {
   const int cx = col(u.x.x()), cy = row(u.x.y());
-  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + clearance) / cell_));
+  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + gap) / cell_));
   for (int j = std::max(0, cy - reach); j <= std::min(ny_ - 1, cy + reach); ++j) {
     for (int i = std::max(0, cx - reach); i <= std::min(nx_ - 1, cx + reach); ++i) {
       for (const std::size_t k : columns_[static_cast<std::size_t>(j * nx_ + i)]) {
-        if (touches(u, placed_[k], clearance)) return true;
+        if (f(k)) return true;
       }
     }
   }
   return false;
 }
 
+bool Deposit::touchesBodies(const Placed& u, double clearance) const {
+  return anyNear(u, clearance, [&](std::size_t k) { return touches(u, placed_[k], clearance); });
+}
+
 std::vector<std::size_t> Deposit::touching(const Placed& u, double clearance) const {
   std::vector<std::size_t> out;
-  const int cx = col(u.x.x()), cy = row(u.x.y());
-  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + clearance) / cell_));
-  for (int j = std::max(0, cy - reach); j <= std::min(ny_ - 1, cy + reach); ++j) {
-    for (int i = std::max(0, cx - reach); i <= std::min(nx_ - 1, cx + reach); ++i) {
-      for (const std::size_t k : columns_[static_cast<std::size_t>(j * nx_ + i)]) {
-        if (touches(u, placed_[k], clearance)) out.push_back(k);
-      }
-    }
-  }
+  anyNear(u, clearance, [&](std::size_t k) {
+    if (touches(u, placed_[k], clearance)) out.push_back(k);
+    return false;
+  });
   std::sort(out.begin(), out.end());
   return out;
 }
 
 std::vector<std::size_t> Deposit::near(const Placed& u, double gap) const {
   std::vector<std::size_t> out;
-  const int cx = col(u.x.x()), cy = row(u.x.y());
-  const int reach = static_cast<int>(std::ceil((u.radius + maxRadius_ + gap) / cell_));
-  for (int j = std::max(0, cy - reach); j <= std::min(ny_ - 1, cy + reach); ++j) {
-    for (int i = std::max(0, cx - reach); i <= std::min(nx_ - 1, cx + reach); ++i) {
-      for (const std::size_t k : columns_[static_cast<std::size_t>(j * nx_ + i)]) {
-        const double r = u.radius + placed_[k].radius + gap;
-        if ((u.x - placed_[k].x).squaredNorm() < r * r) out.push_back(k);
-      }
-    }
-  }
+  anyNear(u, gap, [&](std::size_t k) {
+    const double r = u.radius + placed_[k].radius + gap;
+    if ((u.x - placed_[k].x).squaredNorm() < r * r) out.push_back(k);
+    return false;
+  });
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -113,6 +113,9 @@ private:
   /// Push u inside the walls; false if it cannot fit.
   bool clearWalls(Placed& u, double clearance) const;
 
+  /// f(k) for every placed body k in the grid columns that bodies within `gap` (m) of u's bounding
+  /// sphere can occupy, until f returns true; true if it did.
+  template <class F> bool anyNear(const Placed& u, double gap, F&& f) const;
   [[nodiscard]] int col(double x) const;
   [[nodiscard]] int row(double y) const;
   double x0_, y0_;

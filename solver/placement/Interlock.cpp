@@ -10,6 +10,21 @@
 
 namespace armour::placement {
 
+LayerContact layerContact(const Deposit& deposit, const Placed& u, std::size_t firstUnitBody, double clearance,
+                          const Vec3& normal, double baseOffset) {
+  LayerContact out;
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec3& v : u.shape->mesh.vertices) top = std::max(top, (u.x + u.R * (u.scale * v)).dot(normal));
+  out.top = top - baseOffset;
+  const double reach = 2.0 * clearance;
+  out.onSupport = deposit.touchesStatics(u, reach);
+  for (std::size_t k : deposit.touching(u, reach)) {
+    if (k < firstUnitBody) out.onSupport = true;
+    else ++out.unitsTouched;
+  }
+  return out;
+}
+
 InterlockJudge::InterlockJudge(const Deposit& deposit, const simulation::ShapeModel& unit, std::size_t firstUnitBody,
                                double clearance, double dn, const OrientationSettings& settings, const Vec3& normal,
                                double baseOffset)
@@ -47,16 +62,11 @@ double InterlockJudge::envelopeShare(const Placed& u) const {
 
 InterlockScore InterlockJudge::score(const Placed& u, const Vec3& gridPoint) const {
   InterlockScore out;
-  double top = -std::numeric_limits<double>::infinity();
-  for (const Vec3& v : u.shape->mesh.vertices) top = std::max(top, (u.x + u.R * (u.scale * v)).dot(normal_));
-  out.top = (top - baseOffset_) / dn_;
+  const LayerContact contact = layerContact(deposit_, u, firstUnitBody_, clearance_, normal_, baseOffset_);
+  out.top = contact.top / dn_;
   out.centroid = (u.x.dot(normal_) - baseOffset_) / dn_;
-  const double reach = 2.0 * clearance_;
-  out.onSupport = deposit_.touchesStatics(u, reach);
-  for (std::size_t k : deposit_.touching(u, reach)) {
-    if (k < firstUnitBody_) out.onSupport = true;
-    else ++out.unitsTouched;
-  }
+  out.onSupport = contact.onSupport;
+  out.unitsTouched = contact.unitsTouched;
   out.stacked = !out.onSupport && out.centroid > 1.0;
   out.envelopeShare = s_.envelopeReward > 0.0 ? envelopeShare(u) : 0.0;
   const double shift = (u.x - gridPoint).head<2>().norm() / dn_;

@@ -17,6 +17,18 @@
 
 namespace armour::placement {
 
+/// Where a lowered candidate stands against the layer, for `select: keyed` and `interlocked`.
+struct LayerContact {
+  double top = 0.0;       ///< highest point above the underlayer's top, along the slope normal (unit: m)
+  bool onSupport = false; ///< touches a support (a body added before the units, or a static)
+  int unitsTouched = 0;   ///< units placed before that it touches (unit: -)
+};
+
+/// The candidate's LayerContact: contacts within twice the clearance (m); deposit indices below
+/// firstUnitBody are supports. `normal` and `baseOffset` as for InterlockJudge.
+LayerContact layerContact(const Deposit& deposit, const Placed& u, std::size_t firstUnitBody, double clearance,
+                          const Vec3& normal, double baseOffset);
+
 /// What the judge measured of one candidate (lengths in Dn).
 struct InterlockScore {
   double cost = 0.0;          ///< the total (unit: Dn)

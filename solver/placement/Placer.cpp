@@ -252,14 +252,9 @@ struct LayerBase {
 /// order, supports first.
 double keyedCost(const Deposit& deposit, const Placed& u, std::size_t firstUnitBody, double clearance, double dn,
                  const OrientationSettings& os, const LayerBase& base) {
-  double top = -std::numeric_limits<double>::infinity();
-  for (const Vec3& v : u.shape->mesh.vertices) top = std::max(top, (u.x + u.R * (u.scale * v)).dot(base.normal));
-  top -= base.offset;
-  const double reach = 2.0 * clearance;
-  bool onSupport = deposit.touchesStatics(u, reach), onUnit = false;
-  for (std::size_t k : deposit.touching(u, reach)) (k < firstUnitBody ? onSupport : onUnit) = true;
-  const double height = os.layerThickness > 0.0 ? std::abs(top / dn - os.layerThickness) : top / dn;
-  return height + (onSupport ? 0.0 : os.offUnderlayerCost) + (onUnit ? 0.0 : os.unkeyedCost);
+  const LayerContact c = layerContact(deposit, u, firstUnitBody, clearance, base.normal, base.offset);
+  const double height = os.layerThickness > 0.0 ? std::abs(c.top / dn - os.layerThickness) : c.top / dn;
+  return height + (c.onSupport ? 0.0 : os.offUnderlayerCost) + (c.unitsTouched > 0 ? 0.0 : os.unkeyedCost);
 }
 
 
@@ -383,6 +378,7 @@ private:
   std::vector<BodyId> frozen;
   std::vector<double> settleDrifts;
   LayerBase layerBase;
+  std::optional<InterlockJudge> judge; ///< select: interlocked (the unit's hull made once)
   double step = 0.0;            ///< lowering step (unit: m)
 };
 
@@ -615,6 +611,9 @@ void PlacementRun::prepareUnits() {
     layerBase.normal = toUnitFrame * frame.normal;
     layerBase.offset = frame.normal.dot(origin) + top;
   }
+  if (ps.orientation.select == OrientationSelect::Interlocked)
+    judge.emplace(*deposit_, world.shape(unitShapeId), firstUnitBody, clearance, dn, ps.orientation, layerBase.normal,
+                  layerBase.offset);
   step = 0.05 * dn;
 }
 
@@ -633,9 +632,6 @@ std::vector<Candidate> PlacementRun::chooseCandidates(const GridPoint& g, std::m
   const bool keyed = os.select == OrientationSelect::Keyed;
   const bool interlocked = os.select == OrientationSelect::Interlocked;
   const auto [start, startZ] = descentStart(g);
-  std::optional<InterlockJudge> judge;
-  if (interlocked)
-    judge.emplace(deposit, unitModel, firstUnitBody, clearance, dn, os, layerBase.normal, layerBase.offset);
   // Work a lowered unit into the hole below its grid point; the tilt of the slide turns its
   // natural frame too (world axes: the deposit is not rotated for the units).
   // Keyed and interlocked: the slide keeps the moves that lower the rule's cost, not the centroid.
@@ -658,7 +654,6 @@ std::vector<Candidate> PlacementRun::chooseCandidates(const GridPoint& g, std::m
     u.x = x;
     return u;
   };
-  const auto draw = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   const std::size_t keep = interlocked ? static_cast<std::size_t>(std::max(1, os.settleCandidates)) : 1;
   std::vector<Candidate> kept; // the best `keep` so far, best first (ties: the earlier)
   const auto consider = [&](const Placed& u, const Quat& natural, double c) {
@@ -675,8 +670,8 @@ std::vector<Candidate> PlacementRun::chooseCandidates(const GridPoint& g, std::m
       // The grid point, then `offsets` shifts uniform in a disc along the face (the deposit's
       // x-y plane: normal to the lowering), each lowered from above to its first touch.
       for (int k = 0; k <= os.offsets; ++k) {
-        const double r = k == 0 ? 0.0 : os.offsetRadius * dn * std::sqrt(draw());
-        const double a = 2.0 * std::numbers::pi * draw();
+        const double r = k == 0 ? 0.0 : os.offsetRadius * dn * std::sqrt(uniform(rng));
+        const double a = 2.0 * std::numbers::pi * uniform(rng);
         Placed u = unitAt(natural, start + Vec3(r * std::cos(a), r * std::sin(a), 0.0));
         if (deposit.lower(u, step, clearance, startZ)) consider(u, natural, cost(u));
       }
@@ -722,8 +717,6 @@ std::size_t PlacementRun::trySettledCandidates(BodyId b, const std::vector<Candi
     world.restoreState(s);
     world.invalidateBoxes();
   };
-  const InterlockJudge judge(*deposit_, world.shape(unitShapeId), firstUnitBody, clearance, dn, ps.orientation,
-                             layerBase.normal, layerBase.offset);
   const Vec3 gridPoint = descentStart(g).first;
   std::size_t best = 0;
   double bestCost = std::numeric_limits<double>::infinity();
@@ -733,7 +726,7 @@ std::size_t PlacementRun::trySettledCandidates(BodyId b, const std::vector<Candi
     Placed u = candidates[k].u;
     u.x = toUnitFrame * world.bodies().position(b);
     u.R = (toUnitFrame * world.bodies().orientation(b)).toRotationMatrix();
-    const double c = judge.score(u, gridPoint).cost + (lone.rested ? 0.0 : ps.orientation.stackedCost);
+    const double c = judge->score(u, gridPoint).cost + (lone.rested ? 0.0 : ps.orientation.stackedCost);
     log->debug("  candidate {}: cost {:.3f} at first touch, {:.3f} at rest", k, candidates[k].cost, c);
     if (c < bestCost) {
       bestCost = c;

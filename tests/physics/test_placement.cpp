@@ -30,6 +30,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The lowest and highest point of body b's mesh along `normal` (world, m).
+std::pair<double, double> spanAlong(const simulation::World& world, simulation::BodyId b, const Eigen::Vector3d& normal) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& v : world.shape(world.bodyShape(b)).mesh.vertices) {
+    const double n = world.bodies().toWorld(b, world.bodyScale(b) * v).dot(normal);
+    lo = std::min(lo, n);
+    hi = std::max(hi, n);
+  }
+  return {lo, hi};
+}
+
 /// A 1:2 slope with the toe of seed 001 between walls 6.6 m apart: friction 0.75 > tan(alpha) =
 /// 0.5, so single Antifer cubes rest on the face. Two rows of two 1 m^3 cubes (a few seconds).
 std::string antiferScene(const std::string& method, const std::string& extra = "") {
@@ -635,12 +646,7 @@ placement:
     Measure m;
     const auto& world = *r.built.world;
     for (const auto& u : r.units) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const auto& v : world.shape(world.bodyShape(u.body)).mesh.vertices) {
-        const double n = world.bodies().toWorld(u.body, world.bodyScale(u.body) * v).dot(normal);
-        lo = std::min(lo, n);
-        hi = std::max(hi, n);
-      }
+      const auto [lo, hi] = spanAlong(world, u.body, normal);
       m.meanTop += hi / static_cast<double>(r.units.size());
       const bool on = lo < 0.02;
       if (on) ++m.onFace;
@@ -702,12 +708,7 @@ placement:
     Measure m;
     const auto& world = *r.built.world;
     for (const auto& u : r.units) {
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const auto& v : world.shape(world.bodyShape(u.body)).mesh.vertices) {
-        const double n = world.bodies().toWorld(u.body, world.bodyScale(u.body) * v).dot(normal);
-        lo = std::min(lo, n);
-        hi = std::max(hi, n);
-      }
+      const auto [lo, hi] = spanAlong(world, u.body, normal);
       m.meanTop += hi / static_cast<double>(r.units.size());
       if (lo > 0.3) ++m.offFace;
     }
